@@ -1,0 +1,103 @@
+// context.cpp — context/queue creation, program building with full diagnostics, launch timing.
+#include "cl/context.h"
+
+#include "cl/cl_error.h"
+#include "cl/kernel_source.h"
+#include "util/error.h"
+
+namespace fen { namespace ocl {
+
+void KernelStats::record(const std::string& name, const cl::Event& done)
+{
+    pending_.emplace_back(name, done);
+    if (pending_.size() > 4096)
+        collect();
+}
+
+void KernelStats::collect()
+{
+    for (auto& [name, ev] : pending_) {
+        ev.wait();
+        const cl_ulong start = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+        const cl_ulong end = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+        Entry& e = entries_[name];
+        e.launches += 1;
+        e.deviceSeconds += end > start ? static_cast<double>(end - start) * 1e-9 : 0.0;
+    }
+    pending_.clear();
+}
+
+void KernelStats::reset()
+{
+    pending_.clear();
+    entries_.clear();
+}
+
+const std::map<std::string, KernelStats::Entry>& KernelStats::entries()
+{
+    collect();
+    return entries_;
+}
+
+std::string baseBuildOptions() { return "-cl-std=CL1.2"; }
+
+Context::Context(const DeviceInfo& info) : info_(info)
+{
+    try {
+        context_ = cl::Context(info_.device);
+        queue_ = cl::CommandQueue(context_, info_.device, CL_QUEUE_PROFILING_ENABLE);
+    } catch (const cl::Error& e) {
+        throw Error(cat("cannot open OpenCL device ", info_.label(), ": ", describe(e)));
+    }
+}
+
+cl::Program Context::program(const std::string& mainFile, const std::vector<std::string>& defines)
+{
+    std::string options = baseBuildOptions();
+    for (const auto& d : defines)
+        options += " -D" + d;
+    const std::string key = mainFile + "|" + options;
+    if (auto it = programs_.find(key); it != programs_.end())
+        return it->second;
+
+    const std::string source = resolveKernelSource(mainFile, defaultKernelReader());
+    cl::Program prog(context_, source);
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+        prog.build({info_.device}, options.c_str());
+    } catch (const cl::Error& e) {
+        std::string log;
+        try {
+            log = prog.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device);
+        } catch (const cl::Error&) {
+            log = "(no build log)";
+        }
+        throw Error(cat("kernel build of kernels/", mainFile, " failed on ", info_.label(),
+                        " (", clErrorName(e.err()), ")\noptions: ", options, "\n", log));
+    }
+    buildSeconds_ +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    programs_.emplace(key, prog);
+    return prog;
+}
+
+cl::Buffer Context::buffer(cl_mem_flags flags, std::size_t bytes, const char* what,
+                           const void* initial)
+{
+    const std::size_t size = bytes == 0 ? 16 : bytes;
+    if (size > info_.maxAllocBytes)
+        throw Error(cat(what, " needs ", size >> 20, " MiB but ", info_.label(),
+                        " allows at most ", info_.maxAllocBytes >> 20,
+                        " MiB in one allocation"));
+    try {
+        if (initial && bytes > 0)
+            return cl::Buffer(context_, flags | CL_MEM_COPY_HOST_PTR, size,
+                              const_cast<void*>(initial));
+        return cl::Buffer(context_, flags, size);
+    } catch (const cl::Error& e) {
+        throw Error(cat("cannot allocate ", what, " (", size >> 20, " MiB) on ", info_.label(),
+                        ": ", describe(e)));
+    }
+}
+
+} }  // namespace fen::ocl

@@ -1,0 +1,146 @@
+// device.cpp — OpenCL platform/device enumeration and the --device rule (device.h).
+#include "cl/device.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+
+#include "cl/cl_error.h"
+#include "util/error.h"
+
+namespace fen { namespace ocl {
+
+namespace {
+
+std::string trimmed(std::string s)
+{
+    while (!s.empty() && (s.back() == '\0' || std::isspace(static_cast<unsigned char>(s.back()))))
+        s.pop_back();
+    size_t i = 0;
+    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i])))
+        ++i;
+    return s.substr(i);
+}
+
+std::string lower(std::string s)
+{
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+bool isIndex(const std::string& s)
+{
+    return !s.empty() && std::all_of(s.begin(), s.end(),
+                                     [](unsigned char c) { return std::isdigit(c) != 0; });
+}
+
+std::string availableList(const std::vector<DeviceInfo>& devices)
+{
+    std::string s;
+    for (const auto& d : devices)
+        s += cat(s.empty() ? "" : "; ", d.index, ": ", d.label());
+    return s.empty() ? "none" : s;
+}
+
+}  // namespace
+
+std::string DeviceInfo::typeName() const
+{
+    if (type & CL_DEVICE_TYPE_GPU)
+        return "GPU";
+    if (type & CL_DEVICE_TYPE_CPU)
+        return "CPU";
+    if (type & CL_DEVICE_TYPE_ACCELERATOR)
+        return "ACCEL";
+    return "OTHER";
+}
+
+std::string DeviceInfo::label() const { return platformName + " / " + deviceName; }
+
+std::vector<DeviceInfo> listDevices()
+{
+    std::vector<cl::Platform> platforms;
+    try {
+        cl::Platform::get(&platforms);
+    } catch (const cl::Error& e) {
+        // The ICD loader answers CL_PLATFORM_NOT_FOUND_KHR when no driver is installed.
+        throw Error(cat("no OpenCL platform found (", clErrorName(e.err()),
+                        "); install an OpenCL driver, e.g. pocl-opencl-icd"));
+    }
+    if (platforms.empty())
+        throw Error("no OpenCL platform found; install an OpenCL driver, e.g. pocl-opencl-icd");
+
+    std::vector<DeviceInfo> out;
+    for (const auto& p : platforms) {
+        std::vector<cl::Device> devices;
+        try {
+            p.getDevices(CL_DEVICE_TYPE_ALL, &devices);
+        } catch (const cl::Error&) {
+            continue;  // a platform with no devices (CL_DEVICE_NOT_FOUND)
+        }
+        for (const auto& d : devices) {
+            DeviceInfo info;
+            info.index = static_cast<int>(out.size());
+            info.platform = p;
+            info.device = d;
+            info.platformName = trimmed(p.getInfo<CL_PLATFORM_NAME>());
+            info.deviceName = trimmed(d.getInfo<CL_DEVICE_NAME>());
+            info.vendor = trimmed(d.getInfo<CL_DEVICE_VENDOR>());
+            info.deviceVersion = trimmed(d.getInfo<CL_DEVICE_VERSION>());
+            info.driverVersion = trimmed(d.getInfo<CL_DRIVER_VERSION>());
+            info.openclC = trimmed(d.getInfo<CL_DEVICE_OPENCL_C_VERSION>());
+            info.type = d.getInfo<CL_DEVICE_TYPE>();
+            info.computeUnits = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+            info.globalMemBytes = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+            info.maxAllocBytes = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+            const std::string ext = d.getInfo<CL_DEVICE_EXTENSIONS>();
+            info.int64Atomics = ext.find("cl_khr_int64_base_atomics") != std::string::npos;
+            out.push_back(std::move(info));
+        }
+    }
+    if (out.empty())
+        throw Error("OpenCL platforms were found but none has a device");
+    return out;
+}
+
+int defaultDeviceIndex(const std::vector<DeviceInfo>& devices)
+{
+    for (const auto& d : devices)
+        if (d.isGpu())
+            return d.index;
+    for (const auto& d : devices)
+        if (d.isCpu())
+            return d.index;
+    return devices.empty() ? -1 : 0;
+}
+
+DeviceInfo selectDevice(const std::string& specIn)
+{
+    std::string spec = specIn;
+    std::string origin = "--device";
+    if (spec.empty()) {
+        if (const char* env = std::getenv("FEN_CL_DEVICE"); env && *env) {
+            spec = env;
+            origin = "FEN_CL_DEVICE";
+        }
+    }
+    const auto devices = listDevices();
+    if (spec.empty())
+        return devices[static_cast<size_t>(defaultDeviceIndex(devices))];
+    if (isIndex(spec)) {
+        const long i = std::strtol(spec.c_str(), nullptr, 10);
+        if (i >= 0 && i < static_cast<long>(devices.size()))
+            return devices[static_cast<size_t>(i)];
+        throw Error(cat("no OpenCL device has index ", spec, " (", origin, "); available: ",
+                        availableList(devices)));
+    }
+    const std::string needle = lower(spec);
+    for (const auto& d : devices)
+        if (lower(d.label()).find(needle) != std::string::npos)
+            return d;
+    throw Error(cat("no OpenCL device matches ", origin, " '", spec, "'; available: ",
+                    availableList(devices)));
+}
+
+} }  // namespace fen::ocl

@@ -1,0 +1,47 @@
+// device.h — finding OpenCL devices and choosing one.
+//
+// Devices are numbered across all platforms in enumeration order; `--device` takes that number
+// or a case-insensitive substring of "platform / device name"; with none given, the
+// FEN_CL_DEVICE environment variable is used, else the first GPU, else the first CPU device.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cl/cl.h"
+
+namespace fen { namespace ocl {
+
+struct DeviceInfo {
+    int index = -1;
+    cl::Platform platform;
+    cl::Device device;
+    std::string platformName;
+    std::string deviceName;
+    std::string vendor;
+    std::string deviceVersion;
+    std::string driverVersion;
+    std::string openclC;
+    cl_device_type type = 0;
+    cl_uint computeUnits = 0;
+    cl_ulong globalMemBytes = 0;
+    cl_ulong maxAllocBytes = 0;
+    bool int64Atomics = false;
+
+    bool isGpu() const { return (type & CL_DEVICE_TYPE_GPU) != 0; }
+    bool isCpu() const { return (type & CL_DEVICE_TYPE_CPU) != 0; }
+    std::string typeName() const;
+    std::string label() const;  // "platform / device"
+};
+
+// All devices of all platforms. Throws fen::Error when there is no OpenCL platform at all.
+std::vector<DeviceInfo> listDevices();
+
+// The device named by `spec` (index or substring; "" = FEN_CL_DEVICE, else the default).
+// Throws fen::Error naming the spec and listing what is available.
+DeviceInfo selectDevice(const std::string& spec);
+
+// The default choice among `devices` (first GPU, else first CPU, else first); -1 if empty.
+int defaultDeviceIndex(const std::vector<DeviceInfo>& devices);
+
+} }  // namespace fen::ocl

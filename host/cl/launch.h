@@ -1,0 +1,39 @@
+// launch.h — setting kernel arguments with an arity check, and named, timed launches.
+//
+// Every launch has a name; its device time lands in Context::stats() (reported by the commands'
+// --json output). Work is 1-D: `n` work-items rounded up to the local size; kernels guard
+// `gid >= n` themselves (OpenCL 1.2 has no non-uniform work-groups).
+#pragma once
+
+#include <string>
+
+#include "cl/context.h"
+#include "util/error.h"
+
+namespace fen { namespace ocl {
+
+template <class... Args>
+void setKernelArgs(cl::Kernel& kernel, const Args&... args)
+{
+    const cl_uint expected = kernel.getInfo<CL_KERNEL_NUM_ARGS>();
+    if (expected != sizeof...(Args))
+        throw Error(cat("kernel ", kernel.getInfo<CL_KERNEL_FUNCTION_NAME>(), " takes ", expected,
+                        " arguments, the host passes ", sizeof...(Args)));
+    cl_uint i = 0;
+    (kernel.setArg(i++, args), ...);
+}
+
+inline cl::Event launch(Context& ctx, const cl::Kernel& kernel, const std::string& name,
+                        std::size_t n, std::size_t local = 64)
+{
+    cl::Event done;
+    if (n == 0)
+        return done;
+    const std::size_t global = (n + local - 1) / local * local;
+    ctx.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local),
+                                     nullptr, &done);
+    ctx.stats().record(name, done);
+    return done;
+}
+
+} }  // namespace fen::ocl

@@ -1,0 +1,25 @@
+/* fen_layout.h — the list of every struct shared by host and device, for the layout probe.
+ *
+ * FEN_SHARED_LAYOUT(X) expands X(struct, member) for each struct and the members whose offsets
+ * matter. kernels/test_probes.cl writes sizeof/offsetof as the device compiler sees them;
+ * tests/kernels/layout_test.cpp compares with the host compiler. A struct added to a shared header
+ * is added here too.
+ */
+#ifndef FEN_LAYOUT_H
+#define FEN_LAYOUT_H
+
+#include "shared/fen_bvh.h"
+
+#define FEN_SHARED_LAYOUT(X) \
+    X(Ray, org_tmin)         \
+    X(Ray, dir_tmax)         \
+    X(Hit, t)                \
+    X(Hit, prim)             \
+    X(BvhNode2, bounds)      \
+    X(BvhNode2, child)       \
+    X(BvhNode4, child)       \
+    X(BvhNode8, child)       \
+    X(TriPacket4, v)         \
+    X(TriPacket4, prim)
+
+#endif /* FEN_LAYOUT_H */

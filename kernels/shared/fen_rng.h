@@ -1,0 +1,55 @@
+/* fen_rng.h — counter-based random numbers, identical on host and device.
+ *
+ * Philox-4x32-10 (Salmon et al., "Parallel random numbers: as easy as 1, 2, 3", SC 2011):
+ * a keyed bijection of a 128-bit counter. A light path draws its numbers from the counter
+ * (path index, iteration, bounce, dimension block) under the key (seed), so a render does not
+ * depend on thread scheduling or work-group size (DESIGN.md §4). Integer-only: host and device
+ * streams match bit for bit (tests/kernels/rng_test.cpp checks it).
+ */
+#ifndef FEN_RNG_H
+#define FEN_RNG_H
+
+#include "shared/fen_types.h"
+
+#ifdef __OPENCL_VERSION__
+#define FEN_RNG_FN static inline
+#define FEN_MULHI32(a, b) mul_hi((uint)(a), (uint)(b))
+#else
+#define FEN_RNG_FN inline
+#define FEN_MULHI32(a, b) ((fen_u32)(((fen_u64)(a) * (fen_u64)(b)) >> 32))
+#endif
+
+FEN_NS_BEGIN
+
+typedef struct {
+    fen_u32 x, y, z, w;
+} RngBlock;
+
+FEN_RNG_FN RngBlock fen_philox4x32_10(RngBlock ctr, fen_u32 key0, fen_u32 key1)
+{
+    for (int round = 0; round < 10; ++round) {
+        const fen_u32 hi0 = FEN_MULHI32(0xD2511F53u, ctr.x);
+        const fen_u32 lo0 = 0xD2511F53u * ctr.x;
+        const fen_u32 hi1 = FEN_MULHI32(0xCD9E8D57u, ctr.z);
+        const fen_u32 lo1 = 0xCD9E8D57u * ctr.z;
+        RngBlock next;
+        next.x = hi1 ^ ctr.y ^ key0;
+        next.y = lo1;
+        next.z = hi0 ^ ctr.w ^ key1;
+        next.w = lo0;
+        ctr = next;
+        key0 += 0x9E3779B9u;
+        key1 += 0xBB67AE85u;
+    }
+    return ctr;
+}
+
+/* A float in [0, 1) from the top 24 bits: every value is exactly representable, 1 never occurs. */
+FEN_RNG_FN fen_f32 fen_u32_to_unit(fen_u32 x)
+{
+    return (fen_f32)(x >> 8) * (1.0f / 16777216.0f);
+}
+
+FEN_NS_END
+
+#endif /* FEN_RNG_H */
