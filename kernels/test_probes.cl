@@ -1,0 +1,53 @@
+/* test_probes.cl — thin kernels that expose library code to the tests (tests/kernels/).
+ * Not used by rendering. Each kernel states what it writes.
+ */
+#include "shared/fen_layout.h"
+#include "shared/fen_rng.h"
+#include "lib/ray_offset.h"
+
+/* out[2k], out[2k+1] = sizeof(struct), offsetof(struct, member) for the k-th FEN_SHARED_LAYOUT
+   entry, measured on a real global pointer (portable where offsetof is not). */
+kernel void layout_probe(global uint* out, global uchar* scratch)
+{
+    if (get_global_id(0) != 0)
+        return;
+    int k = 0;
+#define FEN_PROBE(T, m)                                                                      \
+    out[k++] = (uint)sizeof(T);                                                              \
+    out[k++] = (uint)((global uchar*)&(((global T*)scratch)->m) - scratch);
+    FEN_SHARED_LAYOUT(FEN_PROBE)
+#undef FEN_PROBE
+}
+
+/* out[4i..4i+3] = Philox-4x32-10 of counter (i, c1, c2, c3) under key (k0, k1). */
+kernel void rng_probe(global uint* out, uint n, uint c1, uint c2, uint c3, uint k0, uint k1)
+{
+    const uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    RngBlock ctr;
+    ctr.x = i;
+    ctr.y = c1;
+    ctr.z = c2;
+    ctr.w = c3;
+    const RngBlock r = fen_philox4x32_10(ctr, k0, k1);
+    out[4 * i + 0] = r.x;
+    out[4 * i + 1] = r.y;
+    out[4 * i + 2] = r.z;
+    out[4 * i + 3] = r.w;
+}
+
+/* For hit i on triangle tri[3*i..3*i+2] (xyz in float4) with barycentrics bary[i].xy and a
+   leaving direction dir[i].xyz: out[i] = the offset origin of the new ray. */
+kernel void spawn_probe(global const float4* tri, global const float2* bary,
+                        global const float4* dir, global float4* out, uint n)
+{
+    const uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    const float3 p0 = tri[3 * i].xyz, p1 = tri[3 * i + 1].xyz, p2 = tri[3 * i + 2].xyz;
+    float offset_m;
+    const float3 p = surface_point(p0, p1, p2, bary[i].x, bary[i].y, &offset_m);
+    const float3 ng = cross(p1 - p0, p2 - p0);
+    out[i] = (float4)(offset_ray_origin(p, offset_m, ng, dir[i].xyz), offset_m);
+}
