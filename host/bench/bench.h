@@ -1,0 +1,27 @@
+// bench.h — `fenestra bench`: traversal throughput of the OpenCL kernels, against Embree.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace fen {
+
+struct BenchOptions {
+    std::string scenePath;           // "" = the procedural room
+    std::string device;              // --device
+    std::vector<int> widths;         // BVH layouts to measure; empty = the device's default
+    std::size_t rays = 1u << 22;
+    int runs = 5;
+    int warmup = 1;
+    std::uint64_t seed = 1;
+    bool embree = true;
+    bool sweepQuality = false;       // also build the full-sweep SAH tree and compare costs
+    bool json = false;
+};
+
+int runBench(const BenchOptions& opt);
+
+// The layout a device traverses fastest (measured: docs/bvh_layout.md).
+int defaultBvhWidth(bool gpu);
+
+}  // namespace fen

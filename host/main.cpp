@@ -1,0 +1,118 @@
+// main.cpp — the fenestra command line, and the one place errors are reported.
+//
+// Every user-facing failure (bad input, unknown option, missing device, failed kernel build)
+// arrives here as an exception and leaves as "fenestra: error: <message>" on stderr with exit
+// status 1 (2 for command-line usage errors). Nothing is printed twice, nothing crashes.
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "bench/bench.h"
+#include "cl/cl_error.h"
+#include "commands.h"
+#include "util/error.h"
+
+namespace {
+
+int fail(const std::string& message, int code)
+{
+    std::fprintf(stderr, "fenestra: error: %s\n", message.c_str());
+    return code;
+}
+
+std::vector<int> parseWidths(const std::string& s)
+{
+    if (s.empty())
+        return {};
+    if (s == "all")
+        return {2, 4, 8};
+    std::vector<int> out;
+    std::stringstream in(s);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        if (item == "2" || item == "bvh2")
+            out.push_back(2);
+        else if (item == "4" || item == "bvh4")
+            out.push_back(4);
+        else if (item == "8" || item == "bvh8")
+            out.push_back(8);
+        else
+            throw fen::Error("--layout takes bvh2, bvh4, bvh8, a comma-separated list or 'all', not '" +
+                             item + "'");
+    }
+    return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"fenestra - light tracer for daylit interiors (OpenCL)", "fenestra"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "fenestra 0.1");
+
+    bool devicesJson = false;
+    auto* devices = app.add_subcommand("devices", "List OpenCL platforms and devices");
+    devices->add_flag("--json", devicesJson, "Machine-readable output");
+
+    fen::BenchOptions bench;
+    std::string layouts;
+    auto* benchCmd = app.add_subcommand(
+        "bench", "Ray traversal throughput on the procedural room or a glTF scene, against Embree");
+    benchCmd->add_option("scene", bench.scenePath, "glTF scene (default: procedural 110k-triangle room)");
+    benchCmd->add_option("--device", bench.device, "OpenCL device: index or name substring");
+    benchCmd->add_option("--layout", layouts, "BVH layouts: bvh2, bvh4, bvh8, a list, or all "
+                                              "(default: the device's)");
+    benchCmd->add_option("--rays", bench.rays, "Rays per query (default 4194304)");
+    benchCmd->add_option("--runs", bench.runs, "Counted runs (default 5)");
+    benchCmd->add_option("--warmup", bench.warmup, "Uncounted runs first (default 1)");
+    benchCmd->add_option("--seed", bench.seed, "Seed of the rays");
+    bool noEmbree = false;
+    benchCmd->add_flag("--no-embree", noEmbree, "Skip the Embree comparison");
+    benchCmd->add_flag("--sweep-quality", bench.sweepQuality,
+                       "Also build a full-sweep SAH tree and compare SAH costs");
+    benchCmd->add_flag("--json", bench.json, "Machine-readable output");
+
+    if (argc > 1 && argv[1][0] != '-') {
+        bool known = false;
+        std::string names;
+        for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+            known = known || sub->get_name() == argv[1];
+            names += (names.empty() ? "" : ", ") + sub->get_name();
+        }
+        if (!known)
+            return fail(std::string("unknown command '") + argv[1] + "' (commands: " + names + ")", 2);
+    }
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        return fail(std::string(e.what()) + " (see fenestra --help)", 2);
+    }
+
+    try {
+        if (*devices)
+            return fen::runDevices(devicesJson);
+        if (*benchCmd) {
+            bench.widths = parseWidths(layouts);
+            bench.embree = !noEmbree;
+            return fen::runBench(bench);
+        }
+    } catch (const fen::Error& e) {
+        return fail(e.what(), 1);
+    } catch (const cl::Error& e) {
+        return fail("OpenCL: " + fen::ocl::describe(e), 1);
+    } catch (const std::bad_alloc&) {
+        return fail("out of host memory", 1);
+    } catch (const std::exception& e) {
+        return fail(e.what(), 1);
+    }
+    return 0;
+}
