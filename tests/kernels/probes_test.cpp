@@ -1,0 +1,86 @@
+// probes_test.cpp — what the device compiler sees equals what the host compiler sees:
+// struct sizes/offsets (FEN_SHARED_LAYOUT) and the Philox random stream, bit for bit.
+#include <gtest/gtest.h>
+
+#include <cstddef>
+
+#include "cl/launch.h"
+#include "shared/fen_layout.h"
+#include "shared/fen_rng.h"
+#include "support/cl_fixture.h"
+
+namespace fen {
+namespace {
+
+using namespace fen::dev;
+
+TEST(Probes, SharedStructLayoutMatchesHost)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    std::vector<std::uint32_t> host;
+    std::vector<std::string> names;
+#define FEN_HOST_PROBE(T, m)                               \
+    host.push_back(static_cast<std::uint32_t>(sizeof(T))); \
+    host.push_back(static_cast<std::uint32_t>(offsetof(T, m))); \
+    names.push_back(#T "." #m);
+    FEN_SHARED_LAYOUT(FEN_HOST_PROBE)
+#undef FEN_HOST_PROBE
+
+    cl::Program prog = ctx->program("test_probes.cl");
+    cl::Kernel k(prog, "layout_probe");
+    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, host.size() * 4, "layout");
+    cl::Buffer scratch = ctx->buffer(CL_MEM_READ_WRITE, 4096, "scratch");
+    ocl::setKernelArgs(k, out, scratch);
+    ocl::launch(*ctx, k, "layout_probe", 1, 1);
+    std::vector<std::uint32_t> device(host.size());
+    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, device.size() * 4, device.data());
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        EXPECT_EQ(device[2 * i], host[2 * i]) << "sizeof " << names[i];
+        EXPECT_EQ(device[2 * i + 1], host[2 * i + 1]) << "offsetof " << names[i];
+    }
+}
+
+TEST(Probes, PhiloxStreamMatchesHostBitForBit)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    const std::uint32_t n = 10000, c1 = 7, c2 = 0xFFFFFFFFu, c3 = 3, k0 = 0xDEADBEEFu, k1 = 42;
+    cl::Program prog = ctx->program("test_probes.cl");
+    cl::Kernel k(prog, "rng_probe");
+    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 16, "rng");
+    ocl::setKernelArgs(k, out, n, c1, c2, c3, k0, k1);
+    ocl::launch(*ctx, k, "rng_probe", n);
+    std::vector<std::uint32_t> device(4 * n);
+    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, device.size() * 4, device.data());
+    std::size_t mismatches = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const RngBlock r = fen_philox4x32_10({i, c1, c2, c3}, k0, k1);
+        mismatches += r.x != device[4 * i] || r.y != device[4 * i + 1] ||
+                      r.z != device[4 * i + 2] || r.w != device[4 * i + 3];
+    }
+    EXPECT_EQ(mismatches, 0u);
+}
+
+TEST(Probes, PhiloxKnownAnswer)
+{
+    // Known-answer vectors of Random123 (kat_vectors, philox4x32_10).
+    const RngBlock zero = fen_philox4x32_10({0, 0, 0, 0}, 0, 0);
+    EXPECT_EQ(zero.x, 0x6627e8d5u);
+    EXPECT_EQ(zero.y, 0xe169c58du);
+    EXPECT_EQ(zero.z, 0xbc57ac4cu);
+    EXPECT_EQ(zero.w, 0x9b00dbd8u);
+    const RngBlock ones = fen_philox4x32_10({0xffffffffu, 0xffffffffu, 0xffffffffu, 0xffffffffu},
+                                            0xffffffffu, 0xffffffffu);
+    EXPECT_EQ(ones.x, 0x408f276du);
+    EXPECT_EQ(ones.y, 0x41c83b0eu);
+    EXPECT_EQ(ones.z, 0xa20bc7c6u);
+    EXPECT_EQ(ones.w, 0x6d5451fdu);
+}
+
+TEST(Probes, UnitFloatNeverReachesOne)
+{
+    EXPECT_EQ(fen_u32_to_unit(0u), 0.0f);
+    EXPECT_LT(fen_u32_to_unit(0xFFFFFFFFu), 1.0f);
+}
+
+}  // namespace
+}  // namespace fen
