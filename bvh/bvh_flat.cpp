@@ -134,6 +134,11 @@ FlatBvh flattenBvh(const BinaryBvh& bvh, const std::vector<Triangle>& tris, int 
     const auto t0 = std::chrono::steady_clock::now();
     FlatBvh out;
     out.width = width;
+    // A binary tree of L leaves has 2L - 1 nodes; every wide row has at least two children, so
+    // there are fewer rows than leaves.
+    const std::size_t leaves = (bvh.nodes.size() + 1) / 2;
+    out.packets.reserve(leaves);
+    out.nodeWords.reserve(std::max<std::size_t>(1, leaves) * out.wordsPerNode());
     Flattener f(bvh, tris, out);
     if (bvh.nodes.empty()) {
         f.emitRootOnly(nullptr);

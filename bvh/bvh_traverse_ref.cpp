@@ -75,9 +75,10 @@ float triLane(const dev::TriPacket4& pk, int lane, const Pre& r, float tmax, flo
     const bool pos = u > 0.0f || v > 0.0f || w > 0.0f;
     const float det = u + v + w;
     const float tsc = u * (r.sz * az) + v * (r.sz * bz) + w * (r.sz * cz);
-    const float t = tsc / det;
-    *b1 = v / det;
-    *b2 = w / det;
+    const float rcp = 1.0f / det;
+    const float t = tsc * rcp;
+    *b1 = v * rcp;
+    *b2 = w * rcp;
     const bool ok = !(neg && pos) && det != 0.0f && t > r.tmin && t < tmax;
     return ok ? t : std::numeric_limits<float>::infinity();
 }

@@ -61,7 +61,9 @@ int main(int argc, char** argv)
     std::string layouts;
     auto* benchCmd = app.add_subcommand(
         "bench", "Ray traversal throughput on the procedural room or a glTF scene, against Embree");
-    benchCmd->add_option("scene", bench.scenePath, "glTF scene (default: procedural 110k-triangle room)");
+    benchCmd->add_option("scene", bench.scenePath,
+                         "room (default: procedural 110k triangles), spheres (room + 100 spheres, "
+                         "1.09M triangles) or a glTF file");
     benchCmd->add_option("--device", bench.device, "OpenCL device: index or name substring");
     benchCmd->add_option("--layout", layouts, "BVH layouts: bvh2, bvh4, bvh8, a list, or all "
                                               "(default: the device's)");

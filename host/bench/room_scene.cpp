@@ -1,6 +1,8 @@
 // room_scene.cpp — the benchmark room and incoherent rays (room_scene.h).
 #include "bench/room_scene.h"
 
+#include "scene/gltf_load.h"
+
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -90,6 +92,62 @@ BenchScene makeBenchRoom(std::uint32_t seed)
         }
     };
     return s;
+}
+
+BenchScene makeBenchSpheres(std::uint32_t seed)
+{
+    BenchScene s = makeBenchRoom(seed);
+    std::mt19937_64 rng(seed + 1000);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    struct Ball {
+        glm::vec3 c;
+        float r;
+    };
+    auto balls = std::make_shared<std::vector<Ball>>();
+    const int rings = 50, segments = 100;
+    for (int i = 0; i < 100; ++i) {
+        const float r = 0.1f + 0.5f * u(rng);
+        const glm::vec3 c(r + (10.0f - 2 * r) * u(rng), r + (3.0f - 2 * r) * u(rng),
+                          r + (8.0f - 2 * r) * u(rng));
+        balls->push_back({c, r});
+        auto at = [&](int ring, int seg) -> glm::vec3 {
+            const double th = M_PI * ring / rings, ph = 2.0 * M_PI * (seg % segments) / segments;
+            return c + r * glm::vec3(glm::dvec3(std::sin(th) * std::cos(ph), std::cos(th),
+                                                std::sin(th) * std::sin(ph)));
+        };
+        for (int ring = 0; ring < rings; ++ring)
+            for (int seg = 0; seg < segments; ++seg) {
+                const glm::vec3 a = at(ring, seg), b = at(ring, seg + 1), cc = at(ring + 1, seg + 1),
+                                d = at(ring + 1, seg);
+                if (ring != 0)
+                    s.scene.triangles.push_back({a, b, d});
+                if (ring != rings - 1)
+                    s.scene.triangles.push_back({b, cc, d});
+            }
+    }
+    s.scene.source = "spheres (procedural)";
+    s.scene.triangleNode.assign(s.scene.triangles.size(), 0);
+    auto roomPoint = s.freePoint;
+    s.freePoint = [roomPoint, balls](std::mt19937_64& r) {
+        for (;;) {
+            const glm::vec3 p = roomPoint(r);
+            bool inside = false;
+            for (const auto& b : *balls)
+                inside = inside || glm::dot(p - b.c, p - b.c) < b.r * b.r;
+            if (!inside)
+                return p;
+        }
+    };
+    return s;
+}
+
+BenchScene benchSceneNamed(const std::string& nameOrPath)
+{
+    if (nameOrPath.empty() || nameOrPath == "room")
+        return makeBenchRoom();
+    if (nameOrPath == "spheres")
+        return makeBenchSpheres();
+    return benchSceneFrom(loadGltf(nameOrPath));
 }
 
 BenchScene benchSceneFrom(Scene scene)

@@ -21,26 +21,42 @@ typedef float8 bvh_floatw;
 typedef int8 bvh_intw;
 #define BVH_LOADW vload8
 #define BVH_STOREW vstore8
-#define BVH_LANE_BITS(m)                                                                          \
+#define BVH_LANE_BITS_PORTABLE(m)                                                                 \
     ((uint)(((m).s0 & 1) | ((m).s1 & 2) | ((m).s2 & 4) | ((m).s3 & 8) | ((m).s4 & 16) |          \
             ((m).s5 & 32) | ((m).s6 & 64) | ((m).s7 & 128)))
+#if defined(__clang__) && defined(__AVX__)
+/* One vmovmskps instead of an 8-instruction OR reduction (measured: any-hit +15 % on PoCL). */
+#define BVH_LANE_BITS(m) ((uint)__builtin_ia32_movmskps256(as_float8(m)))
+#endif
 #elif FEN_BVH_WIDTH == 4
 typedef BvhNode4 BvhNode;
 typedef float4 bvh_floatw;
 typedef int4 bvh_intw;
 #define BVH_LOADW vload4
 #define BVH_STOREW vstore4
-#define BVH_LANE_BITS(m) ((uint)(((m).s0 & 1) | ((m).s1 & 2) | ((m).s2 & 4) | ((m).s3 & 8)))
+#define BVH_LANE_BITS_PORTABLE(m) ((uint)(((m).s0 & 1) | ((m).s1 & 2) | ((m).s2 & 4) | ((m).s3 & 8)))
+#if defined(__clang__) && defined(__SSE__)
+#define BVH_LANE_BITS(m) ((uint)__builtin_ia32_movmskps(as_float4(m)))
+#endif
 #elif FEN_BVH_WIDTH == 2
 typedef BvhNode2 BvhNode;
 typedef float2 bvh_floatw;
 typedef int2 bvh_intw;
 #define BVH_LOADW vload2
 #define BVH_STOREW vstore2
-#define BVH_LANE_BITS(m) ((uint)(((m).s0 & 1) | ((m).s1 & 2)))
+#define BVH_LANE_BITS_PORTABLE(m) ((uint)(((m).s0 & 1) | ((m).s1 & 2)))
 #else
 #error "FEN_BVH_WIDTH must be 2, 4 or 8"
 #endif
+#ifndef BVH_LANE_BITS
+#define BVH_LANE_BITS(m) BVH_LANE_BITS_PORTABLE(m)
+#endif
+
+/* max/min without NaN handling: operands here are finite or +-inf, never NaN (safe reciprocal,
+   finite origins), and OpenCL's fmax/fmin cost three instructions each for NaN semantics we do
+   not need, while max/min are undefined for infinities (OpenCL C 1.2 §6.12.4). */
+#define BVH_VMAX(a, b) select((b), (a), (a) > (b))
+#define BVH_VMIN(a, b) select((b), (a), (a) < (b))
 
 /* 1 + 2*gamma(3), gamma(n) = n*eps/(1 - n*eps), eps = 2^-24 */
 #define BVH_FAR_SCALE 1.0000003576278687f
@@ -62,9 +78,9 @@ static inline uint bvh_wide_test(const global BvhNode* n, const RayPre* r, float
     const bvh_floatw tfx = (BVH_LOADW(0, b + r->far_x) - r->org.x) * r->idir.x;
     const bvh_floatw tfy = (BVH_LOADW(0, b + r->far_y) - r->org.y) * r->idir.y;
     const bvh_floatw tfz = (BVH_LOADW(0, b + r->far_z) - r->org.z) * r->idir.z;
-    const bvh_floatw tn = fmax(fmax(tnx, tny), fmax(tnz, (bvh_floatw)(r->tmin)));
+    const bvh_floatw tn = BVH_VMAX(BVH_VMAX(tnx, tny), BVH_VMAX(tnz, (bvh_floatw)(r->tmin)));
     const bvh_floatw tf =
-        fmin(fmin(fmin(tfx, tfy), tfz) * BVH_FAR_SCALE, (bvh_floatw)(tmax));
+        BVH_VMIN(BVH_VMIN(BVH_VMIN(tfx, tfy), tfz) * BVH_FAR_SCALE, (bvh_floatw)(tmax));
     BVH_STOREW(tn, 0, tnear);
     const bvh_intw m = tn <= tf;
     return BVH_LANE_BITS(m);
@@ -147,7 +163,7 @@ static inline Hit bvh_intersect_closest(const global BvhNode* nodes,
             float4 b1, b2;
             const global TriPacket4* p = packets + (cur & ~FEN_LEAF_BIT);
             const float4 t = tri_packet_intersect(p, r, hit.t, &b1, &b2);
-            const float tm = fmin(fmin(t.s0, t.s1), fmin(t.s2, t.s3));
+            const float tm = tri_packet_min(t);
             if (tm < hit.t) {
                 const int lane = (t.s0 == tm) ? 0 : ((t.s1 == tm) ? 1 : ((t.s2 == tm) ? 2 : 3));
                 hit.t = tm;
@@ -196,7 +212,7 @@ static inline int bvh_intersect_any(const global BvhNode* nodes, const global Tr
             float4 b1, b2;
             const float4 t =
                 tri_packet_intersect(packets + (cur & ~FEN_LEAF_BIT), r, r->tmax, &b1, &b2);
-            if (fmin(fmin(t.s0, t.s1), fmin(t.s2, t.s3)) < INFINITY)
+            if (tri_packet_min(t) < INFINITY)
                 return 1;
         }
         if (sp == 0)

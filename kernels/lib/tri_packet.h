@@ -42,11 +42,20 @@ static inline float4 tri_packet_intersect(const global TriPacket4* p, const RayP
     const int4 pos = (u > 0.0f) | (vv > 0.0f) | (w_ > 0.0f);
     const float4 det = u + vv + w_;
     const float4 tsc = u * (r->sz * az) + vv * (r->sz * bz) + w_ * (r->sz * cz);
-    const float4 t = tsc / det;
+    /* one division for t and both barycentrics */
+    const float4 rcp = 1.0f / det;
+    const float4 t = tsc * rcp;
     const int4 ok = ~(neg & pos) & (det != 0.0f) & (t > r->tmin) & (t < tmax);
-    *b1_out = vv / det;
-    *b2_out = w_ / det;
+    *b1_out = vv * rcp;
+    *b2_out = w_ * rcp;
     return select((float4)(INFINITY), t, ok);
+}
+
+/* Smallest lane (lanes are finite or +inf, never NaN). */
+static inline float tri_packet_min(float4 t)
+{
+    const float2 m = select(t.hi, t.lo, t.lo < t.hi);
+    return m.x < m.y ? m.x : m.y;
 }
 
 #endif /* FEN_TRI_PACKET_H */

@@ -21,7 +21,7 @@
 #define FEN_LEAF_BIT   0x80000000u
 #define FEN_INVALID_ID 0xFFFFFFFFu
 /* Largest traversal stack the kernels carry; the host rejects a tree that could need more. */
-#define FEN_BVH_STACK_SIZE 64
+#define FEN_BVH_STACK_SIZE 128
 
 FEN_NS_BEGIN
 
