@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/bench.h"
+#include "render/render_cmd.h"
 #include "cl/cl_error.h"
 #include "commands.h"
 #include "util/error.h"
@@ -77,6 +78,33 @@ int main(int argc, char** argv)
                        "Also build a full-sweep SAH tree and compare SAH costs");
     benchCmd->add_flag("--json", bench.json, "Machine-readable output");
 
+    fen::RenderOptions render;
+    std::string renderLayout;
+    bool progressOn = false, progressOff = false;
+    auto* renderCmd = app.add_subcommand("render", "Light-trace a glTF scene to EXR + PNG + JSON");
+    renderCmd->add_option("scene", render.scenePath, "glTF scene (.gltf or .glb)")->required();
+    renderCmd->add_option("--out", render.outPath, "Output PATH.exr (PATH.png and PATH.json beside it)")
+        ->required();
+    renderCmd->add_option("--paths", render.paths, "Light paths to trace");
+    renderCmd->add_option("--time", render.timeSeconds, "Render for about this many seconds instead");
+    renderCmd->add_option("--width", render.width, "Image width (default: 640, or from --height)");
+    renderCmd->add_option("--height", render.height, "Image height (default: from the camera's aspect ratio)");
+    renderCmd->add_option("--camera", render.camera, "Camera node name (or camera name); default the first");
+    renderCmd->add_option("--seed", render.seed, "Random seed (default 1)");
+    renderCmd->add_option("--device", render.device, "OpenCL device: index or name substring");
+    renderCmd->add_option("--max-bounces", render.maxBounces, "Surface interactions per path (default 64)");
+    renderCmd->add_option("--roi", render.roi, "Region x0,y0,x1,y1 for the statistics (default: whole image)");
+    renderCmd->add_option("--reference", render.referencePath, "Reference EXR: report RMSE and relative MSE");
+    renderCmd->add_option("--method", render.method, "Emission strategy: uniform");
+    renderCmd->add_option("--layout", renderLayout, "BVH layout: bvh2, bvh4 or bvh8 (default: the device's)");
+    renderCmd->add_option("--batches", render.batches, "Independent batches for the noise estimate (default 16)");
+    renderCmd->add_option("--camera-spp", render.cameraSpp,
+                          "Camera-pass samples per pixel per batch, for the sky seen directly (default 4)");
+    renderCmd->add_option("--pool", render.poolSize, "Path slots on the device (default: 2^19 CPU, 2^21 GPU)");
+    renderCmd->add_option("--exposure", render.exposure, "PNG preview exposure (default: ROI mean to mid-grey)");
+    renderCmd->add_flag("--progress", progressOn, "Show progress even when stderr is not a terminal");
+    renderCmd->add_flag("--no-progress", progressOff, "Never show progress");
+
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
         std::string names;
@@ -102,6 +130,16 @@ int main(int argc, char** argv)
     try {
         if (*devices)
             return fen::runDevices(devicesJson);
+        if (*renderCmd) {
+            if (!renderLayout.empty()) {
+                const auto w = parseWidths(renderLayout);
+                if (w.size() != 1)
+                    throw fen::Error("--layout takes one of bvh2, bvh4, bvh8");
+                render.bvhWidth = w[0];
+            }
+            render.progress = progressOff ? 0 : (progressOn ? 1 : -1);
+            return fen::runRender(render);
+        }
         if (*benchCmd) {
             bench.widths = parseWidths(layouts);
             bench.embree = !noEmbree;

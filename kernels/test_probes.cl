@@ -51,3 +51,73 @@ kernel void spawn_probe(global const float4* tri, global const float2* bary,
     const float3 ng = cross(p1 - p0, p2 - p0);
     out[i] = (float4)(offset_ray_origin(p, offset_m, ng, dir[i].xyz), offset_m);
 }
+
+/* ---- sampling routines (tests/kernels/sampling_test.cpp) ---- */
+#include "lib/fresnel.h"
+#include "lib/rng.h"
+#include "lib/sampling.h"
+#include "lib/sky.h"
+
+/* out[i].xyz = a sample of routine `kind` from the i-th counter-based random quadruple:
+   0 disk (x, y), 1 cosine hemisphere about +y, 2 cone about +y with cos_max = a,
+   3 linear density on [0,1) with end values a, b (in x). */
+kernel void sampling_probe(global float4* out, uint n, uint kind, float a, float b, uint seed)
+{
+    const uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    const float4 u = rng_floats(seed, 0x1234567u, i, 0, 0, 0);
+    float4 r = (float4)(0.0f);
+    if (kind == 0)
+        r.xy = sample_disk(u.x, u.y);
+    else if (kind == 1)
+        r.xyz = sample_cosine_hemisphere((float3)(0.0f, 1.0f, 0.0f), u.x, u.y);
+    else if (kind == 2)
+        r.xyz = sample_cone((float3)(0.0f, 1.0f, 0.0f), a, u.x, u.y);
+    else
+        r.x = sample_linear(u.x, a, b);
+    out[i] = r;
+}
+
+/* out[i] = entry chosen by cdf_search from 32 random bits. */
+kernel void cdf_probe(global const ulong* cdf, uint cells, global uint* out, uint n, uint seed)
+{
+    const uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    const RngBlock r = rng_bits(seed, 0x7654321u, i, 0, 0, 0);
+    out[i] = cdf_search(cdf, cells, r.x);
+}
+
+/* out[i].xyz = sampled direction towards the sky, .w = its weight factor_k sin(theta);
+   lum[i] = sky_eval in the sampled direction. */
+kernel void sky_probe(global const float* theta, global const float* phi, global const float* values,
+                      global const ulong* cdf, global const float* factor, uint nt, uint np,
+                      global float4* out, global float* lum, uint n, uint seed)
+{
+    const uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    Sky s;
+    s.theta = theta;
+    s.phi = phi;
+    s.values = values;
+    s.cdf = cdf;
+    s.factor = factor;
+    s.nt = nt;
+    s.np = np;
+    const RngBlock bits = rng_bits(seed, 0x2468ace0u, i, 0, 0, 0);
+    const float4 u = rng_to_floats(bits);
+    float w;
+    const float3 d = sky_sample(&s, bits.y, u.z, u.w, &w);
+    out[i] = (float4)(d, w);
+    lum[i] = sky_eval(&s, d);
+}
+
+/* out[i] = fresnel_dielectric(cos_i[i], eta). */
+kernel void fresnel_probe(global const float* cos_i, global float* out, uint n, float eta)
+{
+    const uint i = get_global_id(0);
+    if (i < n)
+        out[i] = fresnel_dielectric(cos_i[i], eta);
+}

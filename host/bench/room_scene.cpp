@@ -69,7 +69,10 @@ BenchScene makeBenchRoom(std::uint32_t seed)
     s.scene.source = "room (procedural)";
     s.scene.triangles = std::move(t);
     s.scene.triangleNode.assign(s.scene.triangles.size(), 0);
+    s.scene.triangleMaterial.assign(s.scene.triangles.size(), 0);
     s.scene.nodeNames = {"room"};
+    s.scene.nodePortal = {PortalMark::None};
+    s.scene.materials = {Material{"white", glm::vec3(0.8f)}};
     for (const auto& tri : s.scene.triangles) {
         s.scene.bounds.grow(tri.p0);
         s.scene.bounds.grow(tri.p1);
@@ -127,6 +130,7 @@ BenchScene makeBenchSpheres(std::uint32_t seed)
     }
     s.scene.source = "spheres (procedural)";
     s.scene.triangleNode.assign(s.scene.triangles.size(), 0);
+    s.scene.triangleMaterial.assign(s.scene.triangles.size(), 0);
     auto roomPoint = s.freePoint;
     s.freePoint = [roomPoint, balls](std::mt19937_64& r) {
         for (;;) {

@@ -10,6 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
+#include "scene/json_reader.h"
 #include "util/error.h"
 
 namespace fen {
@@ -119,6 +120,12 @@ private:
 void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, const glm::dmat4& xf,
                   int node, const std::string& where, Scene& scene)
 {
+    // Primitives without a material get glTF's default material, stored last.
+    const std::uint32_t material = prim.material >= 0
+                                       ? static_cast<std::uint32_t>(prim.material)
+                                       : static_cast<std::uint32_t>(m.materials.size());
+    if (prim.material >= static_cast<int>(m.materials.size()))
+        throw Error(cat(where, ": material ", prim.material, " does not exist"));
     const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES)
         throw Error(cat(where, ": primitive mode ", mode,
@@ -166,7 +173,149 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
     for (std::size_t i = 0; i < idx.size(); i += 3) {
         scene.triangles.push_back({world[idx[i]], world[idx[i + 1]], world[idx[i + 2]]});
         scene.triangleNode.push_back(static_cast<std::uint32_t>(node));
+        scene.triangleMaterial.push_back(material);
     }
+}
+
+std::string materialLabel(const tinygltf::Model& m, std::size_t i)
+{
+    const std::string& name = m.materials[i].name;
+    return name.empty() ? cat("materials[", i, "]") : cat("materials[", i, "] '", name, "'");
+}
+
+// "file: materials[2] 'glass'" style context, with the extension's JSON as nlohmann::json.
+nlohmann::json extensionJson(const tinygltf::ExtensionMap& ext, const std::string& name)
+{
+    const auto it = ext.find(name);
+    return it == ext.end() ? nlohmann::json() : toJson(it->second);
+}
+
+std::vector<Material> readMaterials(const tinygltf::Model& m, const std::string& path, Scene& scene)
+{
+    std::vector<Material> out;
+    for (std::size_t i = 0; i < m.materials.size(); ++i) {
+        const tinygltf::Material& src = m.materials[i];
+        const std::string where = cat(path, ": ", materialLabel(m, i));
+        Material mat;
+        mat.name = src.name.empty() ? cat("material ", i) : src.name;
+        const auto& bc = src.pbrMetallicRoughness.baseColorFactor;
+        if (!bc.empty()) {
+            if (bc.size() != 4)
+                throw Error(cat(where, ": baseColorFactor must have 4 components"));
+            for (int c = 0; c < 3; ++c) {
+                if (!(bc[static_cast<std::size_t>(c)] >= 0.0 && bc[static_cast<std::size_t>(c)] <= 1.0))
+                    throw Error(cat(where, ": baseColorFactor[", c, "] = ", bc[static_cast<std::size_t>(c)],
+                                    " is outside [0, 1]"));
+                mat.albedo[c] = static_cast<float>(bc[static_cast<std::size_t>(c)]);
+            }
+        }
+        if (src.pbrMetallicRoughness.baseColorTexture.index >= 0)
+            scene.warnings.push_back(cat(where, ": baseColorTexture ignored, baseColorFactor used"));
+        const auto& em = src.emissiveFactor;
+        if ((em.size() == 3 && (em[0] > 0.0 || em[1] > 0.0 || em[2] > 0.0)) ||
+            src.emissiveTexture.index >= 0)
+            scene.warnings.push_back(cat(where, ": emission ignored (light comes from the sun and sky only)"));
+
+        const nlohmann::json tr = extensionJson(src.extensions, "KHR_materials_transmission");
+        if (!tr.is_null()) {
+            JsonReader r(tr, where + ".extensions.KHR_materials_transmission");
+            const double t = r.number("transmissionFactor", 0.0);
+            if (!(t >= 0.0 && t <= 1.0))
+                throw Error(cat(r.keyPath("transmissionFactor"), ": ", t, " is outside [0, 1]"));
+            if (r.has("transmissionTexture")) {
+                r.raw("transmissionTexture");
+                scene.warnings.push_back(cat(where, ": transmissionTexture ignored"));
+            }
+            r.rejectUnknownKeys();
+            if (t > 0.0) {
+                mat.glass = true;
+                mat.transmission = static_cast<float>(t) * mat.albedo;
+            }
+        }
+        const nlohmann::json ior = extensionJson(src.extensions, "KHR_materials_ior");
+        if (!ior.is_null()) {
+            JsonReader r(ior, where + ".extensions.KHR_materials_ior");
+            const double v = r.number("ior", 1.5);
+            if (!(v >= 1.0 && v <= 10.0))
+                throw Error(cat(r.keyPath("ior"), ": ", v, " must be in [1, 10]"));
+            r.rejectUnknownKeys();
+            mat.ior = static_cast<float>(v);
+        }
+        out.push_back(mat);
+    }
+    Material def;
+    def.name = "default (white)";
+    out.push_back(def);
+    return out;
+}
+
+SkySpec readSky(const nlohmann::json& sky, const std::string& where)
+{
+    SkySpec spec;
+    spec.where = where;
+    JsonReader r(sky, where);
+    const std::string type = r.string("type");
+    if (type == "uniform") {
+        spec.type = SkySpec::Type::Uniform;
+        spec.luminance_cd_m2 = r.number("luminance");
+        if (spec.luminance_cd_m2 < 0.0)
+            throw Error(cat(r.keyPath("luminance"), ": negative luminance ", spec.luminance_cd_m2));
+    } else if (type == "cie") {
+        spec.type = SkySpec::Type::Cie;
+        spec.cieType = r.integer("cie_type");
+        if (spec.cieType < 1 || spec.cieType > 15)
+            throw Error(cat(r.keyPath("cie_type"), ": ", spec.cieType, " is not a CIE sky type (1..15)"));
+        spec.zenithLuminance_cd_m2 = r.number("zenith_luminance");
+        if (spec.zenithLuminance_cd_m2 < 0.0)
+            throw Error(cat(r.keyPath("zenith_luminance"), ": negative luminance ",
+                            spec.zenithLuminance_cd_m2));
+        spec.sunAltitudeDeg = r.number("sun_altitude_deg");
+        if (spec.sunAltitudeDeg < 0.0 || spec.sunAltitudeDeg > 90.0)
+            throw Error(cat(r.keyPath("sun_altitude_deg"), ": ", spec.sunAltitudeDeg,
+                            " is outside [0, 90]"));
+        spec.sunAzimuthDeg = r.number("sun_azimuth_deg");
+    } else if (type == "table") {
+        spec.type = SkySpec::Type::Table;
+        spec.zenithDeg = r.numbers("zenith_deg");
+        spec.azimuthDeg = r.numbers("azimuth_deg");
+        spec.table_cd_m2 = r.numberRows("luminance");
+    } else {
+        throw Error(cat(r.keyPath("type"), ": unknown sky type '", type,
+                        "' (uniform, cie or table)"));
+    }
+    r.rejectUnknownKeys();
+    return spec;
+}
+
+// Orthonormal camera frame from a node's world transform (scale and shear removed).
+CameraSpec readCamera(const tinygltf::Model& m, int node, const glm::dmat4& xf, const std::string& where)
+{
+    const tinygltf::Node& n = m.nodes[static_cast<std::size_t>(node)];
+    if (n.camera >= static_cast<int>(m.cameras.size()))
+        throw Error(cat(where, ": camera ", n.camera, " does not exist"));
+    const tinygltf::Camera& cam = m.cameras[static_cast<std::size_t>(n.camera)];
+    if (cam.type != "perspective")
+        throw Error(cat(where, ": camera ", n.camera, " is '", cam.type,
+                        "'; only perspective cameras are supported"));
+    if (!(cam.perspective.yfov > 0.0 && cam.perspective.yfov < M_PI))
+        throw Error(cat(where, ": camera ", n.camera, ": yfov ", cam.perspective.yfov,
+                        " must be in (0, pi)"));
+    CameraSpec c;
+    c.nodeName = n.name;
+    c.cameraName = cam.name;
+    c.position = glm::dvec3(xf[3]);
+    const glm::dvec3 back = glm::dvec3(xf[2]), upRaw = glm::dvec3(xf[1]);
+    if (glm::length(back) == 0.0 || glm::length(upRaw) == 0.0)
+        throw Error(cat(where, ": camera transform is degenerate"));
+    c.forward = -glm::normalize(back);
+    c.right = glm::cross(c.forward, upRaw);
+    if (glm::length(c.right) < 1e-12)
+        throw Error(cat(where, ": camera transform is degenerate"));
+    c.right = glm::normalize(c.right);
+    c.up = glm::cross(c.right, c.forward);
+    c.yfovRad = cam.perspective.yfov;
+    c.aspectRatio = cam.perspective.aspectRatio > 0.0 ? cam.perspective.aspectRatio : 0.0;
+    return c;
 }
 
 }  // namespace
@@ -197,17 +346,33 @@ Scene loadGltf(const std::string& path)
                 c = ';';
         throw Error(cat(path, ": not a valid glTF file: ", msg.empty() ? "unknown error" : msg));
     }
+    for (const auto& ext : model.extensionsRequired)
+        if (ext != "KHR_materials_transmission" && ext != "KHR_materials_ior" &&
+            ext != "KHR_lights_punctual")
+            throw Error(cat(path, ": requires extension ", ext, ", which fenestra does not support"));
 
     Scene scene;
     scene.source = path;
     scene.nodeNames.resize(model.nodes.size());
+    scene.nodePortal.assign(model.nodes.size(), PortalMark::None);
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
         scene.nodeNames[i] = model.nodes[i].name;
+    scene.materials = readMaterials(model, path, scene);
     if (model.scenes.empty())
         throw Error(cat(path, ": the file has no scene"));
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
     if (sceneIndex >= static_cast<int>(model.scenes.size()))
         throw Error(cat(path, ": default scene ", sceneIndex, " does not exist"));
+    const tinygltf::Scene& gscene = model.scenes[static_cast<std::size_t>(sceneIndex)];
+
+    const nlohmann::json sceneExtras = toJson(gscene.extras);
+    if (!sceneExtras.is_null()) {
+        const std::string where = cat(path, ": scenes[", sceneIndex, "].extras");
+        JsonReader r(sceneExtras, where);
+        if (r.has("sky"))
+            scene.sky = readSky(r.raw("sky"), r.keyPath("sky"));
+        r.rejectUnknownKeys();
+    }
 
     std::vector<char> onPath(model.nodes.size(), 0);
     std::function<void(int, const glm::dmat4&)> visit = [&](int node, const glm::dmat4& parent) {
@@ -217,23 +382,86 @@ Scene loadGltf(const std::string& path)
             throw Error(cat(path, ": ", nodeLabel(model, node), " is its own ancestor"));
         onPath[static_cast<std::size_t>(node)] = 1;
         const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(node)];
+        const std::string where = cat(path, ": ", nodeLabel(model, node));
         const glm::dmat4 xf = parent * localTransform(n);
         if (n.mesh >= 0) {
             if (n.mesh >= static_cast<int>(model.meshes.size()))
-                throw Error(cat(path, ": ", nodeLabel(model, node), " names mesh ", n.mesh,
-                                ", which does not exist"));
+                throw Error(cat(where, " names mesh ", n.mesh, ", which does not exist"));
             const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(n.mesh)];
             for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi)
                 addPrimitive(model, mesh.primitives[pi], xf, node,
-                             cat(path, ": ", nodeLabel(model, node), ", mesh ", n.mesh,
-                                 ", primitive ", pi),
-                             scene);
+                             cat(where, ", mesh ", n.mesh, ", primitive ", pi), scene);
+        }
+        if (n.camera >= 0)
+            scene.cameras.push_back(readCamera(model, node, xf, where));
+
+        const nlohmann::json extras = toJson(n.extras);
+        if (!extras.is_null()) {
+            JsonReader r(extras, where + ".extras");
+            if (r.has("portal")) {
+                const nlohmann::json& p = r.raw("portal");
+                if (p.is_boolean())
+                    scene.nodePortal[static_cast<std::size_t>(node)] =
+                        p.get<bool>() ? PortalMark::Panes : PortalMark::None;
+                else if (p.is_string() && p.get<std::string>() == "hull")
+                    scene.nodePortal[static_cast<std::size_t>(node)] = PortalMark::Hull;
+                else
+                    throw Error(cat(r.keyPath("portal"), ": must be true, false or \"hull\", not ",
+                                    p.dump()));
+            }
+            r.rejectUnknownKeys();
+        }
+
+        const auto light = n.extensions.find("KHR_lights_punctual");
+        if (light != n.extensions.end()) {
+            JsonReader r(toJson(light->second), where + ".extensions.KHR_lights_punctual");
+            const int li = r.integer("light");
+            r.rejectUnknownKeys();
+            if (li < 0 || li >= static_cast<int>(model.lights.size()))
+                throw Error(cat(r.keyPath("light"), ": light ", li, " does not exist"));
+            const tinygltf::Light& L = model.lights[static_cast<std::size_t>(li)];
+            const std::string lwhere = cat(path, ": KHR_lights_punctual.lights[", li, "]");
+            if (L.type != "directional")
+                throw Error(cat(lwhere, ": '", L.type, "' lights are not supported; the sun is the one "
+                                "directional light"));
+            if (scene.sun.present)
+                throw Error(cat(where, ": a second directional light; the sun is the only one "
+                                "(already on node '", scene.sun.nodeName, "')"));
+            if (!(L.intensity >= 0.0) || !std::isfinite(L.intensity))
+                throw Error(cat(lwhere, ".intensity: ", L.intensity, " must be >= 0 (lux)"));
+            glm::dvec3 color(1.0);
+            if (!L.color.empty()) {
+                if (L.color.size() != 3)
+                    throw Error(cat(lwhere, ".color: must have 3 components"));
+                for (int c = 0; c < 3; ++c) {
+                    color[c] = L.color[static_cast<std::size_t>(c)];
+                    if (!(color[c] >= 0.0) || !std::isfinite(color[c]))
+                        throw Error(cat(lwhere, ".color[", c, "]: must be >= 0"));
+                }
+            }
+            scene.sun.present = true;
+            scene.sun.nodeName = n.name.empty() ? cat("node ", node) : n.name;
+            const glm::dvec3 minusZ = -glm::dvec3(xf[2]);
+            if (glm::length(minusZ) == 0.0)
+                throw Error(cat(where, ": the sun's transform is degenerate"));
+            scene.sun.travelDirection = glm::normalize(minusZ);
+            scene.sun.illuminanceRgb_lux = L.intensity * color;
+            const nlohmann::json lextras = toJson(L.extras);
+            if (!lextras.is_null()) {
+                JsonReader le(lextras, lwhere + ".extras");
+                const double deg = le.number("angular_radius_deg", 0.0);
+                if (!(deg >= 0.0 && deg <= 10.0))
+                    throw Error(cat(le.keyPath("angular_radius_deg"), ": ", deg,
+                                    " must be in [0, 10] degrees"));
+                le.rejectUnknownKeys();
+                scene.sun.angularRadiusRad = deg * M_PI / 180.0;
+            }
         }
         for (int c : n.children)
             visit(c, xf);
         onPath[static_cast<std::size_t>(node)] = 0;
     };
-    for (int root : model.scenes[static_cast<std::size_t>(sceneIndex)].nodes)
+    for (int root : gscene.nodes)
         visit(root, glm::dmat4(1.0));
 
     for (const auto& t : scene.triangles) {
@@ -242,6 +470,24 @@ Scene loadGltf(const std::string& path)
         scene.bounds.grow(t.p2);
     }
     return scene;
+}
+
+const CameraSpec& findCamera(const Scene& scene, const std::string& name)
+{
+    if (scene.cameras.empty())
+        throw Error(cat(scene.source, ": the scene has no camera"));
+    if (name.empty())
+        return scene.cameras.front();
+    for (const auto& c : scene.cameras)
+        if (c.nodeName == name)
+            return c;
+    for (const auto& c : scene.cameras)
+        if (c.cameraName == name)
+            return c;
+    std::string names;
+    for (const auto& c : scene.cameras)
+        names += (names.empty() ? "'" : ", '") + (c.nodeName.empty() ? c.cameraName : c.nodeName) + "'";
+    throw Error(cat(scene.source, ": no camera named '", name, "' (cameras: ", names, ")"));
 }
 
 }  // namespace fen

@@ -1,10 +1,21 @@
-// gltf_load.h — reading a glTF 2.0 file (.gltf or .glb) into a Scene.
+// gltf_load.h — reading a glTF 2.0 file (.gltf or .glb) into a Scene (DESIGN.md §1, §6).
 //
-// Geometry: every triangle primitive of the default scene (scene 0 if none is marked), with node
-// transforms (matrix or TRS) applied, in metres, +y up (DESIGN.md §1). Every problem -- a missing
-// or malformed file, a missing buffer, an accessor out of its buffer's bounds, a non-triangle
-// primitive, a non-finite coordinate -- is a fen::Error that names the file and the node / mesh /
-// accessor at fault.
+// - Geometry: every triangle primitive of the default scene (scene 0 if none is marked), node
+//   transforms (matrix or TRS) applied, metres, +y up.
+// - Materials: baseColorFactor RGB is the albedo (two-sided Lambertian); KHR_materials_transmission
+//   makes thin glass with T = transmissionFactor * baseColor and KHR_materials_ior (default 1.5).
+//   Textures and emission are ignored with a warning.
+// - Sun: the one KHR_lights_punctual directional light; intensity is normal illuminance (lux),
+//   light travels along its node's -z; light.extras.angular_radius_deg (default 0) widens it.
+// - Sky: scenes[i].extras.sky, one of
+//     {"type":"uniform","luminance":L}
+//     {"type":"cie","cie_type":1..15,"zenith_luminance":L,"sun_altitude_deg":h,"sun_azimuth_deg":A}
+//     {"type":"table","zenith_deg":[...],"azimuth_deg":[...],"luminance":[[...],...]}
+// - Cameras: perspective cameras, in traversal order, with their node's name and their own.
+// - node.extras.portal: true (window panes) or "hull" (opening frame), for portal emission.
+// Every problem -- a missing or malformed file, a missing buffer, an accessor out of bounds, a
+// non-triangle primitive, a non-finite coordinate, an unknown or malformed extras key, a point
+// light -- is a fen::Error naming the file and the node / mesh / material / key at fault.
 #pragma once
 
 #include <string>
@@ -14,5 +25,9 @@
 namespace fen {
 
 Scene loadGltf(const std::string& path);
+
+// The camera named `name` (node name first, then the camera's own name); the first camera when
+// `name` is empty. Throws fen::Error listing the cameras there are.
+const CameraSpec& findCamera(const Scene& scene, const std::string& name);
 
 }  // namespace fen

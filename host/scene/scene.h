@@ -1,5 +1,8 @@
-// scene.h — a scene as the renderer sees it: a triangle soup with, per triangle, the glTF node it
-// came from. Loaded from glTF by gltf_load.h or built procedurally (host/bench/room_scene.h).
+// scene.h — a scene as the renderer sees it (DESIGN.md §1, §6): a triangle soup with a material
+// and a source glTF node per triangle, the sun, the sky, the cameras. Loaded from glTF by
+// gltf_load.h or built procedurally (host/bench/room_scene.h).
+// Invariants: triangles, triangleNode and triangleMaterial have one entry per triangle;
+// triangleMaterial indexes materials; triangleNode indexes nodeNames (and nodePortal).
 #pragma once
 
 #include <string>
@@ -9,11 +12,60 @@
 
 namespace fen {
 
+// Two-sided Lambertian, or thin glass (DESIGN.md §1).
+struct Material {
+    std::string name;
+    glm::vec3 albedo{1.0f};        // glTF baseColorFactor RGB (linear); glTF's default is white
+    bool glass = false;            // KHR_materials_transmission with transmissionFactor > 0
+    glm::vec3 transmission{0.0f};  // glass: transmissionFactor * baseColorFactor
+    float ior = 1.5f;              // KHR_materials_ior
+};
+
+// The sun: a KHR_lights_punctual directional light.
+struct Sun {
+    bool present = false;
+    std::string nodeName;
+    glm::dvec3 travelDirection{0.0, -1.0, 0.0};  // unit: the node's -z in world space
+    glm::dvec3 illuminanceRgb_lux{0.0};          // intensity (lux, normal illuminance) * color
+    double angularRadiusRad = 0.0;               // light.extras.angular_radius_deg; 0 = parallel
+};
+
+// scenes[i].extras.sky as written in the file; host/sky/sky_spec.h turns it into a goniogram.
+struct SkySpec {
+    enum class Type { None, Uniform, Cie, Table };
+    Type type = Type::None;
+    std::string where;  // "file: scenes[0].extras.sky", for errors found later
+    double luminance_cd_m2 = 0.0;  // uniform
+    int cieType = 0;               // cie
+    double zenithLuminance_cd_m2 = 0.0, sunAltitudeDeg = 0.0, sunAzimuthDeg = 0.0;
+    std::vector<double> zenithDeg, azimuthDeg;  // table
+    std::vector<std::vector<double>> table_cd_m2;
+};
+
+// A glTF perspective camera placed by its node (looks along -z, +y up, +x right).
+struct CameraSpec {
+    std::string nodeName;
+    std::string cameraName;
+    glm::dvec3 position{0.0};
+    glm::dvec3 forward{0.0, 0.0, -1.0}, up{0.0, 1.0, 0.0}, right{1.0, 0.0, 0.0};  // orthonormal
+    double yfovRad = 0.0;
+    double aspectRatio = 0.0;  // 0: not given in the file
+};
+
+enum class PortalMark { None, Panes, Hull };  // node.extras.portal: absent, true, "hull"
+
 struct Scene {
-    std::string source;                     // file path, or a name for procedural scenes
-    std::vector<Triangle> triangles;        // world space, metres
-    std::vector<std::uint32_t> triangleNode;  // glTF node index of each triangle
-    std::vector<std::string> nodeNames;     // per glTF node ("" when unnamed)
+    std::string source;                        // file path, or a name for procedural scenes
+    std::vector<Triangle> triangles;           // world space, metres
+    std::vector<std::uint32_t> triangleNode;   // glTF node index of each triangle
+    std::vector<std::uint32_t> triangleMaterial;
+    std::vector<std::string> nodeNames;        // per glTF node ("" when unnamed)
+    std::vector<PortalMark> nodePortal;        // per glTF node
+    std::vector<Material> materials;           // never empty once loaded
+    Sun sun;
+    SkySpec sky;
+    std::vector<CameraSpec> cameras;           // in scene traversal order
+    std::vector<std::string> warnings;         // ignored features worth telling the user
     Aabb bounds;
 };
 

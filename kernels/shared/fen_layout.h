@@ -9,6 +9,7 @@
 #define FEN_LAYOUT_H
 
 #include "shared/fen_bvh.h"
+#include "shared/fen_render.h"
 
 #define FEN_SHARED_LAYOUT(X) \
     X(Ray, org_tmin)         \
@@ -20,6 +21,19 @@
     X(BvhNode4, child)       \
     X(BvhNode8, child)       \
     X(TriPacket4, v)         \
-    X(TriPacket4, prim)
+    X(TriPacket4, prim)      \
+    X(DevMaterial, transmission) \
+    X(ShadeTri, p2)          \
+    X(DevCamera, up)         \
+    X(DevCamera, width)      \
+    X(PathState, beta)       \
+    X(PathState, path_lo)    \
+    X(PathState, flags)      \
+    X(Connection, value)     \
+    X(RenderParams, sky_weight) \
+    X(RenderParams, path_end) \
+    X(RenderParams, seed)    \
+    X(RenderParams, fixed_scale) \
+    X(RenderParams, batch)
 
 #endif /* FEN_LAYOUT_H */

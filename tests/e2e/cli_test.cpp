@@ -111,5 +111,96 @@ TEST(Cli, BenchJsonSmoke)
     EXPECT_GT(j["scene"]["triangles"].get<int>(), 100000);
 }
 
+// A minimal valid scene for the render CLI: one plate, a camera, a uniform sky.
+test::GltfWriter plateScene()
+{
+    test::GltfWriter w;
+    w.addMeshNode("plate", {{{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}}, {{-1, 0, -1}, {1, 0, 1}, {-1, 0, 1}}});
+    w.doc()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+    w.doc()["nodes"].push_back({{"name", "cam"}, {"camera", 0}, {"translation", {0, 3, 0}},
+                               {"rotation", {-0.7071067811865476, 0, 0, 0.7071067811865476}}});
+    w.doc()["scenes"][0]["nodes"].push_back(1);
+    w.doc()["scenes"][0]["extras"] = {{"sky", {{"type", "uniform"}, {"luminance", 1000}}}};
+    return w;
+}
+
+TEST(CliRender, WritesExrPngAndJson)
+{
+    const std::string dir = test::tempDir("cli-render");
+    const std::string scene = plateScene().write(dir + "/plate.gltf");
+    const CliRun r = run("render " + scene + " --out " + dir + "/out.exr --paths 200000 --width 40 --no-progress");
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* f : {"/out.exr", "/out.png", "/out.json"})
+        EXPECT_FALSE(slurp(dir + f).empty()) << f;
+    const auto j = nlohmann::json::parse(slurp(dir + "/out.json"));
+    EXPECT_EQ(j["width"], 40);
+    EXPECT_EQ(j["height"], 30);  // 4:3 when the camera gives no aspect ratio
+    EXPECT_EQ(j["counters"]["bad_contributions"], 0);
+    EXPECT_EQ(j["counters"]["fixed_point_overflows"], 0);
+    EXPECT_GT(j["mean_luminance_cd_m2"].get<double>(), 0.0);
+    for (const char* k : {"paths", "rays", "seconds", "rays_per_second", "paths_per_second",
+                          "rms_luminance_cd_m2", "noise_std_err_cd_m2", "mean_std_err_cd_m2", "roi"})
+        EXPECT_TRUE(j.contains(k)) << k;
+    // --reference: the image against itself has zero error.
+    const CliRun r2 = run("render " + scene + " --out " + dir + "/again.exr --paths 200000 --width 40 "
+                          "--no-progress --reference " + dir + "/out.exr --roi 5,5,30,25");
+    ASSERT_EQ(r2.status, 0) << r2.err;
+    const auto j2 = nlohmann::json::parse(slurp(dir + "/again.json"));
+    EXPECT_EQ(j2["rmse_cd_m2"].get<double>(), 0.0);
+    EXPECT_EQ(j2["rel_mse"].get<double>(), 0.0);
+}
+
+TEST(CliRender, BadInputIsOneLineNamingTheProblem)
+{
+    const std::string dir = test::tempDir("cli-render-bad");
+    const std::string out = " --out " + dir + "/o.exr --paths 1000 --no-progress";
+    auto variant = [&](const std::string& name, auto edit) {
+        test::GltfWriter w = plateScene();
+        edit(w);
+        return w.write(dir + "/" + name + ".gltf");
+    };
+    expectError(run("render /no/such.gltf" + out), 1, "/no/such.gltf");
+    const std::string noCam = variant("nocam", [](test::GltfWriter& w) {
+        w.doc()["scenes"][0]["nodes"] = {0};
+    });
+    expectError(run("render " + noCam + out), 1, "no camera");
+    const std::string neg = variant("neg", [](test::GltfWriter& w) {
+        w.doc()["scenes"][0]["extras"]["sky"]["luminance"] = -5;
+    });
+    expectError(run("render " + neg + out), 1, "extras.sky.luminance");
+    const std::string unknownType = variant("type", [](test::GltfWriter& w) {
+        w.doc()["scenes"][0]["extras"]["sky"] = {{"type", "sunset"}};
+    });
+    expectError(run("render " + unknownType + out), 1, "'sunset'");
+    const std::string unknownKey = variant("key", [](test::GltfWriter& w) {
+        w.doc()["scenes"][0]["extras"]["sky"]["brightness"] = 3;
+    });
+    expectError(run("render " + unknownKey + out), 1, "extras.sky.brightness: unknown key");
+    const std::string badCie = variant("cie", [](test::GltfWriter& w) {
+        w.doc()["scenes"][0]["extras"]["sky"] = {{"type", "cie"}, {"cie_type", 16}, {"zenith_luminance", 1},
+                                                 {"sun_altitude_deg", 30}, {"sun_azimuth_deg", 0}};
+    });
+    expectError(run("render " + badCie + out), 1, "cie_type");
+    const std::string lines = variant("lines", [](test::GltfWriter& w) {
+        w.doc()["meshes"][0]["primitives"][0]["mode"] = 1;
+    });
+    expectError(run("render " + lines + out), 1, "mode 1");
+    const std::string point = variant("point", [](test::GltfWriter& w) {
+        w.doc()["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 5}}};
+        w.doc()["nodes"][0]["extensions"]["KHR_lights_punctual"]["light"] = 0;
+    });
+    expectError(run("render " + point + out), 1, "'point' lights");
+    const std::string good = plateScene().write(dir + "/good.gltf");
+    expectError(run("render " + good + " --out " + dir + "/o.png --paths 10"), 1, "--out");
+    expectError(run("render " + good + out + " --camera nope"), 1, "'nope'");
+    expectError(run("render " + good + out + " --roi 1,2,3"), 1, "--roi");
+    expectError(run("render " + good + out + " --roi 0,0,999,10"), 1, "--roi");
+    expectError(run("render " + good + out + " --time 5"), 1, "either --paths or --time");
+    expectError(run("render " + good + " --out " + dir + "/o.exr --no-progress --reference /no/ref.exr --paths 10"),
+                1, "/no/ref.exr");
+    expectError(run("render " + good + out + " --width -3"), 1, "--width");
+    expectError(run("render " + good + out + " --method portal"), 1, "--method");
+}
+
 }  // namespace
 }  // namespace fen

@@ -1,0 +1,37 @@
+// device_scene.h — a Scene on an OpenCL device: its BVH (bvh/, trace/), the per-primitive shading
+// triangles and the materials (shared/fen_render.h), and the defines every render program needs.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cl/context.h"
+#include "scene/scene.h"
+#include "trace/device_bvh.h"
+
+namespace fen {
+
+class DeviceScene {
+public:
+    // width: BVH layout (2, 4, 8).
+    DeviceScene(ocl::Context& ctx, const Scene& scene, int bvhWidth);
+
+    const DeviceBvh& bvh() const { return *bvh_; }
+    const FlatBvh& flat() const { return flat_; }
+    const cl::Buffer& tris() const { return tris_; }
+    const cl::Buffer& materials() const { return materials_; }
+    bool hasGlass() const { return hasGlass_; }
+    double bvhBuildSeconds() const { return bvhSeconds_; }
+    // FEN_BVH_WIDTH=..., and FEN_HAS_GLASS when any triangle is glass.
+    std::vector<std::string> defines() const;
+
+private:
+    FlatBvh flat_;
+    std::unique_ptr<DeviceBvh> bvh_;
+    cl::Buffer tris_, materials_;
+    bool hasGlass_ = false;
+    double bvhSeconds_ = 0.0;
+};
+
+}  // namespace fen

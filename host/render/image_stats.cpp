@@ -1,0 +1,75 @@
+// image_stats.cpp — ROI statistics (image_stats.h).
+#include "render/image_stats.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "util/error.h"
+
+namespace fen {
+
+Roi parseRoi(const std::string& spec, int width, int height)
+{
+    Roi r{0, 0, width, height};
+    if (spec.empty())
+        return r;
+    std::vector<int> v;
+    std::stringstream in(spec);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        try {
+            std::size_t used = 0;
+            v.push_back(std::stoi(item, &used));
+            if (used != item.size())
+                throw std::invalid_argument(item);
+        } catch (const std::exception&) {
+            throw Error(cat("--roi '", spec, "': '", item, "' is not an integer"));
+        }
+    }
+    if (v.size() != 4)
+        throw Error(cat("--roi '", spec, "': expected x0,y0,x1,y1"));
+    r = Roi{v[0], v[1], v[2], v[3]};
+    if (r.x0 < 0 || r.y0 < 0 || r.x1 > width || r.y1 > height || r.x0 >= r.x1 || r.y0 >= r.y1)
+        throw Error(cat("--roi '", spec, "': must satisfy 0 <= x0 < x1 <= ", width,
+                        " and 0 <= y0 < y1 <= ", height));
+    return r;
+}
+
+RoiStats roiStats(const Image& image, const std::vector<double>& stdErr, const Image* reference,
+                  const Roi& roi)
+{
+    RoiStats s;
+    s.pixels = roi.pixels();
+    double sum = 0.0, se = 0.0, sq = 0.0, rel = 0.0;
+    for (int y = roi.y0; y < roi.y1; ++y)
+        for (int x = roi.x0; x < roi.x1; ++x) {
+            const std::size_t p = static_cast<std::size_t>(y) * image.width + x;
+            sum += image.luminance(p);
+            if (!stdErr.empty())
+                se += stdErr[p];
+            if (reference) {
+                const double d = image.luminance(p) - reference->luminance(p);
+                const double r = reference->luminance(p);
+                sq += d * d;
+                rel += d * d / (r * r + 0.01);
+            }
+        }
+    const double n = static_cast<double>(s.pixels);
+    s.meanLuminance_cd_m2 = sum / n;
+    double var = 0.0;
+    for (int y = roi.y0; y < roi.y1; ++y)
+        for (int x = roi.x0; x < roi.x1; ++x) {
+            const double d = image.luminance(static_cast<std::size_t>(y) * image.width + x) -
+                             s.meanLuminance_cd_m2;
+            var += d * d;
+        }
+    s.rmsLuminance_cd_m2 = std::sqrt(var / n);
+    s.noiseStdErr_cd_m2 = se / n;
+    if (reference) {
+        s.rmse_cd_m2 = std::sqrt(sq / n);
+        s.relMse = rel / n;
+    }
+    return s;
+}
+
+}  // namespace fen

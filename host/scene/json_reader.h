@@ -1,0 +1,45 @@
+// json_reader.h — strict reading of the JSON objects fenestra defines inside glTF `extras`
+// (DESIGN.md §6): every key must be known, every value of the right type, and every error names
+// the file and the key's path ("room.gltf: scenes[0].extras.sky.luminance: must be >= 0").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace tinygltf {
+class Value;
+}
+
+namespace fen {
+
+nlohmann::json toJson(const tinygltf::Value& v);
+
+class JsonReader {
+public:
+    // `path` is the object's location for messages, e.g. "room.gltf: scenes[0].extras.sky".
+    JsonReader(nlohmann::json object, std::string path);
+
+    bool has(const std::string& key) const;
+    double number(const std::string& key) const;                 // required
+    double number(const std::string& key, double fallback) const;  // optional
+    int integer(const std::string& key) const;                   // required, integral value
+    std::string string(const std::string& key) const;            // required
+    std::vector<double> numbers(const std::string& key) const;   // required array of numbers
+    std::vector<std::vector<double>> numberRows(const std::string& key) const;
+    const nlohmann::json& raw(const std::string& key) const;     // required, any type
+    std::string keyPath(const std::string& key) const { return path_ + "." + key; }
+    const std::string& path() const { return path_; }
+
+    // Throws naming the first key that was never read.
+    void rejectUnknownKeys() const;
+
+private:
+    const nlohmann::json& get(const std::string& key) const;
+    nlohmann::json object_;  // owned: readers are often built from temporaries
+    std::string path_;
+    mutable std::vector<std::string> used_;
+};
+
+}  // namespace fen

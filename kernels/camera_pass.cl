@@ -1,0 +1,65 @@
+/* camera_pass.cl — what the camera sees of the sky directly (DESIGN.md §6: a path from the sky
+ * straight to the pinhole cannot be sampled from the light side, so it is traced from the camera).
+ *
+ * Work-item = pixel: params->camera_spp rays at uniform positions in the pixel (box filter); each
+ * passes through glass (weight T (1 - R), straight on) until it leaves the scene, where it picks up
+ * the sky's luminance, or hits anything else, where it picks up nothing (that light is the light
+ * tracer's). Writes out[pixel] = mean over the samples (rgb). Atomics: camera-ray counter.
+ */
+#include "lib/accumulate.h"
+#include "lib/bvh_traverse.h"
+#include "lib/camera.h"
+#include "lib/fresnel.h"
+#include "lib/ray_offset.h"
+#include "lib/rng.h"
+#include "lib/scene_access.h"
+#include "lib/sky.h"
+
+#define FEN_CAMERA_MAX_GLASS 16
+
+kernel void camera_pass(global const RenderParams* params, global const DevCamera* cam,
+                        global const BvhNode* nodes, global const TriPacket4* packets,
+                        global const ShadeTri* tris, global const DevMaterial* materials,
+                        global const float* sky_theta, global const float* sky_phi,
+                        global const float* sky_values, global float4* out,
+                        volatile global ulong* counters)
+{
+    const uint pixel = get_global_id(0);
+    if (pixel >= cam->width * cam->height)
+        return;
+    Sky sky;
+    sky.theta = sky_theta;
+    sky.phi = sky_phi;
+    sky.values = sky_values;
+    sky.nt = params->sky_theta_nodes;
+    sky.np = params->sky_phi_nodes;
+    const uint px = pixel % cam->width, py = pixel / cam->width;
+    float3 sum = (float3)(0.0f);
+    ulong rays = 0;
+    for (uint s = 0; s < params->camera_spp; ++s) {
+        const float4 u = rng_camera(params->seed, pixel, s, params->batch);
+        const float3 dir = camera_direction(cam, (float)px + u.x, (float)py + u.y);
+        float3 org = cam->position.xyz;
+        float3 weight = (float3)(1.0f);
+        for (int k = 0; k < FEN_CAMERA_MAX_GLASS; ++k) {
+            const RayPre r = ray_setup(org, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
+            const Hit h = bvh_intersect_closest(nodes, packets, &r);
+            ++rays;
+            if (h.prim == FEN_INVALID_ID) {
+                sum += weight * sky_eval(&sky, dir);
+                break;
+            }
+            const global ShadeTri* tri = tris + h.prim;
+            const global DevMaterial* m = materials + as_uint(tri->p0.w);
+            if (!material_is_glass(m))
+                break;
+            const float3 ng = normalize(tri_normal(tris, h.prim));
+            weight *= m->transmission.xyz * (1.0f - fresnel_dielectric(dot(dir, ng), m->transmission.w));
+            float offset_m;
+            const float3 x = surface_point(tri->p0.xyz, tri->p1.xyz, tri->p2.xyz, h.u, h.v, &offset_m);
+            org = offset_ray_origin(x, offset_m, ng, dir);
+        }
+    }
+    out[pixel] = (float4)(sum / (float)max(params->camera_spp, 1u), 0.0f);
+    counter_add(counters, FEN_CTR_CAMERA_RAYS, rays);
+}

@@ -1,0 +1,30 @@
+/* connect.cl — wavefront stage 4: trace each connection to the camera and splat what arrives.
+ *
+ * Work-item i: if connections[i] names a pixel, the segment from its origin to the pinhole is
+ * traced (glass multiplies by T (1 - R), anything opaque blocks: lib/transmittance.h) and the
+ * surviving contribution is added to the pixel in 64-bit fixed point (lib/accumulate.h).
+ * Atomics: pixel accumulators, shadow-ray counter.
+ */
+#include "lib/accumulate.h"
+#include "lib/bvh_traverse.h"
+#include "lib/transmittance.h"
+
+kernel void connect_paths(global const RenderParams* params, global const Connection* connections,
+                          global const BvhNode* nodes, global const TriPacket4* packets,
+                          global const ShadeTri* tris, global const DevMaterial* materials,
+                          volatile global ulong* accum, volatile global ulong* counters)
+{
+    const uint i = get_global_id(0);
+    if (i >= params->pool_size)
+        return;
+    const Connection c = connections[i];
+    const uint pixel = as_uint(c.org.w);
+    if (pixel == FEN_INVALID_ID)
+        return;
+    counter_add(counters, FEN_CTR_SHADOW_RAYS, 1);
+    const RayPre r = ray_setup(c.org.xyz, c.to_cam.xyz, 0.0f, 1.0f, FEN_BVH_WIDTH);
+    const float3 trans = segment_transmittance(nodes, packets, tris, materials, &r,
+                                               normalize(c.to_cam.xyz));
+    if (trans.x > 0.0f || trans.y > 0.0f || trans.z > 0.0f)
+        splat_rgb(accum, pixel, c.value.xyz * trans, params->fixed_scale, counters);
+}

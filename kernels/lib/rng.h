@@ -1,0 +1,56 @@
+/* rng.h — the random numbers of a light path and of a camera sample (DESIGN.md §4).
+ *
+ * Counter-based: a path's numbers depend only on (seed, path index, depth, purpose), never on
+ * which slot or thread handles it, so a render is the same whatever the scheduling. Each call
+ * yields four independent floats in [0, 1).
+ */
+#ifndef FEN_LIB_RNG_H
+#define FEN_LIB_RNG_H
+
+#include "shared/fen_rng.h"
+
+#define FEN_RNG_EMIT_A 0u   /* source choice, direction */
+#define FEN_RNG_EMIT_B 1u   /* origin on the emission disk */
+#define FEN_RNG_SCATTER 2u  /* glass choice, scattering direction, Russian roulette */
+#define FEN_RNG_CAMERA 3u   /* camera pass: position in the pixel */
+
+static inline RngBlock rng_bits(uint seed, uint stream, uint c0, uint c1, uint c2, uint purpose)
+{
+    RngBlock ctr;
+    ctr.x = c0;
+    ctr.y = c1;
+    ctr.z = c2;
+    ctr.w = purpose;
+    return fen_philox4x32_10(ctr, seed, stream);
+}
+
+static inline float4 rng_to_floats(RngBlock r)
+{
+    return (float4)(fen_u32_to_unit(r.x), fen_u32_to_unit(r.y), fen_u32_to_unit(r.z),
+                    fen_u32_to_unit(r.w));
+}
+
+static inline float4 rng_floats(uint seed, uint stream, uint c0, uint c1, uint c2, uint purpose)
+{
+    return rng_to_floats(rng_bits(seed, stream, c0, c1, c2, purpose));
+}
+
+/* Light path `path` (64-bit, as lo/hi) at interaction `depth`: raw bits (for exact discrete
+   choices) or floats. */
+static inline RngBlock rng_path_bits(uint seed, uint path_lo, uint path_hi, uint depth, uint purpose)
+{
+    return rng_bits(seed, 0x6a09e667u, path_lo, path_hi, depth, purpose);
+}
+
+static inline float4 rng_path(uint seed, uint path_lo, uint path_hi, uint depth, uint purpose)
+{
+    return rng_to_floats(rng_path_bits(seed, path_lo, path_hi, depth, purpose));
+}
+
+/* Camera sample `sample` of pixel `pixel` in batch `batch`: a stream of its own. */
+static inline float4 rng_camera(uint seed, uint pixel, uint sample, uint batch)
+{
+    return rng_floats(seed, 0x3c6ef372u, pixel, sample, batch, FEN_RNG_CAMERA);
+}
+
+#endif /* FEN_LIB_RNG_H */

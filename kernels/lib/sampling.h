@@ -1,0 +1,79 @@
+/* sampling.h — warping uniform numbers to the distributions the estimator needs, each with the
+ * exact density the path weights assume (DESIGN.md §2-§3). Checked against their densities by
+ * chi-square in tests/kernels/sampling_test.cpp.
+ */
+#ifndef FEN_SAMPLING_H
+#define FEN_SAMPLING_H
+
+#define FEN_PI 3.14159265358979323846f
+
+/* Uniform on the unit disk: density 1/pi. */
+static inline float2 sample_disk(float u1, float u2)
+{
+    const float r = sqrt(u1);
+    const float phi = 2.0f * FEN_PI * u2;
+    return (float2)(r * cos(phi), r * sin(phi));
+}
+
+/* Two unit vectors completing n (unit) to an orthonormal basis (Duff et al., JCGT 2017). */
+static inline void orthonormal_basis(float3 n, float3* t1, float3* t2)
+{
+    const float s = copysign(1.0f, n.z);
+    const float a = -1.0f / (s + n.z);
+    const float b = n.x * n.y * a;
+    *t1 = (float3)(1.0f + s * n.x * n.x * a, s * b, -s * n.x);
+    *t2 = (float3)(b, s + n.y * n.y * a, -n.y);
+}
+
+/* Cosine-weighted direction around unit n: density cos(theta)/pi per steradian. */
+static inline float3 sample_cosine_hemisphere(float3 n, float u1, float u2)
+{
+    const float2 d = sample_disk(u1, u2);
+    const float z = sqrt(fmax(0.0f, 1.0f - dot(d, d)));
+    float3 t1, t2;
+    orthonormal_basis(n, &t1, &t2);
+    return normalize(d.x * t1 + d.y * t2 + z * n);
+}
+
+/* Uniform in the cone of directions within angle acos(cos_max) of unit axis. */
+static inline float3 sample_cone(float3 axis, float cos_max, float u1, float u2)
+{
+    const float c = 1.0f - u1 * (1.0f - cos_max);
+    const float s = sqrt(fmax(0.0f, 1.0f - c * c));
+    const float phi = 2.0f * FEN_PI * u2;
+    float3 t1, t2;
+    orthonormal_basis(axis, &t1, &t2);
+    return normalize(s * cos(phi) * t1 + s * sin(phi) * t2 + c * axis);
+}
+
+/* x in [0,1) with density proportional to (1-x) a + x b, a, b >= 0, a + b > 0 (PBRT-v4's
+   SampleLinear, stable when a == b). */
+static inline float sample_linear(float u, float a, float b)
+{
+    if (u == 0.0f && a == 0.0f)
+        return 0.0f;
+    if (!(a + b > 0.0f))
+        return u; /* zero density everywhere: only reachable on a set of measure zero */
+    const float x = u * (a + b) / (a + sqrt(mix(a * a, b * b, u)));
+    return fmin(x, 0x1.fffffep-1f);
+}
+
+/* Index i in [0, n) with cdf[i] <= r < cdf[i+1], for 32 random bits r and an integer CDF of n+1
+   entries from cdf[0] = 0 to cdf[n] = 2^32: entry i is chosen with probability exactly
+   (cdf[i+1] - cdf[i]) / 2^32 -- the number the host puts in the path weight -- and never when
+   that is zero. (A float CDF searched with a 24-bit float realises other probabilities, up to
+   0.6 % off for small cells, and zero for tiny ones.) */
+static inline uint cdf_search(const global ulong* cdf, uint n, uint r)
+{
+    uint lo = 0, hi = n; /* invariant: cdf[lo] <= r < cdf[hi] */
+    while (hi - lo > 1) {
+        const uint mid = (lo + hi) >> 1;
+        if (cdf[mid] <= (ulong)r)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+#endif /* FEN_SAMPLING_H */

@@ -1,0 +1,111 @@
+/* fen_render.h — device layout of everything the light-tracing wavefront reads and writes.
+ *
+ * One declaration for host and device (see fen_types.h). The wavefront (DESIGN.md §4) keeps a
+ * pool of PathState slots; per iteration: emit.cl refills dead slots, intersect.cl finds each
+ * path's next hit, shade.cl connects diffuse hits to the camera (a Connection per slot) and
+ * scatters, connect.cl traces the connections and splats them into 128-bit fixed-point pixel
+ * accumulators (lib/accumulate.h). camera_pass.cl adds what the camera sees of the sky directly.
+ * Invariants: every struct is a multiple of 16 bytes, members ordered 16 -> 8 -> 4 bytes;
+ * fen_u64 members sit at 8-byte offsets. All listed in fen_layout.h for the layout probe.
+ */
+#ifndef FEN_RENDER_H
+#define FEN_RENDER_H
+
+#include "shared/fen_bvh.h"
+#include "shared/fen_types.h"
+
+#define FEN_MATERIAL_DIFFUSE 0u
+#define FEN_MATERIAL_GLASS 1u
+
+/* PathState.flags */
+#define FEN_PATH_ALIVE 1u
+#define FEN_PATH_FROM_SUN 2u
+
+/* Counters (fen_u64 each), read back after every iteration. */
+#define FEN_CTR_NEXT_PATH 0        /* next path index to emit (the emit kernel's ticket) */
+#define FEN_CTR_ALIVE 1            /* paths alive after shading (reset by the host) */
+#define FEN_CTR_EXTENSION_RAYS 2
+#define FEN_CTR_SHADOW_RAYS 3
+#define FEN_CTR_CAMERA_RAYS 4
+#define FEN_CTR_BAD_CONTRIBUTIONS 5 /* NaN/inf contributions dropped: must stay 0 */
+#define FEN_CTR_OVERFLOWS 6        /* contributions beyond the 128-bit range: must stay 0 */
+#define FEN_CTR_MAX_DEPTH 7        /* paths cut by --max-bounces (bias, reported) */
+#define FEN_CTR_COUNT 8
+
+FEN_NS_BEGIN
+
+typedef struct {
+    fen_float4 albedo;        /* rgb: Lambertian albedo; w: as_uint kind (FEN_MATERIAL_*) */
+    fen_float4 transmission;  /* rgb: glass transmittance T; w: index of refraction */
+} DevMaterial;
+FEN_ASSERT_SIZE(DevMaterial, 32);
+FEN_ASSERT_OFFSET(DevMaterial, transmission, 16);
+
+/* A triangle for shading, indexed by primitive id (the BVH packets hold copies for traversal). */
+typedef struct {
+    fen_float4 p0;  /* w: as_uint material index */
+    fen_float4 p1;  /* w: as_uint glTF node index */
+    fen_float4 p2;  /* w: unused */
+} ShadeTri;
+FEN_ASSERT_SIZE(ShadeTri, 48);
+
+/* Pinhole camera, box pixel filter. Image plane at unit distance along `forward`. */
+typedef struct {
+    fen_float4 position;  /* xyz (m) */
+    fen_float4 forward;   /* xyz unit; w: tan(horizontal fov / 2) */
+    fen_float4 right;     /* xyz unit; w: tan(vertical fov / 2) */
+    fen_float4 up;        /* xyz unit; w: pixel area on the image plane at unit distance */
+    fen_u32 width;
+    fen_u32 height;
+    fen_u32 pad0;
+    fen_u32 pad1;
+} DevCamera;
+FEN_ASSERT_SIZE(DevCamera, 80);
+FEN_ASSERT_OFFSET(DevCamera, width, 64);
+
+typedef struct {
+    fen_float4 org;   /* xyz: ray origin (m) */
+    fen_float4 dir;   /* xyz: unit direction of travel */
+    fen_float4 beta;  /* rgb: path weight (flux per path, in lm with luminance-valued channels) */
+    fen_u32 path_lo;  /* path index, 64-bit: the RNG counter of the path */
+    fen_u32 path_hi;
+    fen_u32 depth;    /* surface interactions so far */
+    fen_u32 flags;    /* FEN_PATH_* */
+} PathState;
+FEN_ASSERT_SIZE(PathState, 64);
+FEN_ASSERT_OFFSET(PathState, path_lo, 48);
+
+typedef struct {
+    fen_float4 org;     /* xyz: shadow-ray origin (offset off the surface); w: as_uint pixel or FEN_INVALID_ID */
+    fen_float4 to_cam;  /* xyz: camera position - org, the segment t in (0, 1) */
+    fen_float4 value;   /* rgb: contribution to the pixel (cd/m^2 x paths) if nothing blocks it */
+} Connection;
+FEN_ASSERT_SIZE(Connection, 48);
+
+/* Per-batch parameters, in a one-element buffer (never a by-value struct argument). */
+typedef struct {
+    fen_float4 sphere;       /* xyz: centre of the scene's bounding sphere; w: its radius (m) */
+    fen_float4 sun_dir;      /* xyz: direction the sunlight travels (unit); w: cos(angular radius) */
+    fen_float4 sun_weight;   /* rgb: weight of a sun path, (flux of the sun through the disk) / P(sun) */
+    fen_float4 sky_weight;   /* x: pi R^2 / P(sky), times a cell's factor and sin(theta) */
+    fen_u64 path_end;        /* one past the last path index of this batch */
+    fen_u32 seed;
+    fen_u32 max_depth;
+    fen_u32 sun_threshold;   /* a path starts at the sun if its 32 random bits are below this
+                                (0xFFFFFFFF: always); P(sun) = threshold / 2^32 exactly */
+    fen_f32 fixed_scale;     /* pixel accumulators hold round(value * fixed_scale), 128-bit */
+    fen_u32 sky_cells;       /* number of goniogram cells (0: no sky) */
+    fen_u32 sky_theta_nodes;
+    fen_u32 sky_phi_nodes;
+    fen_u32 pool_size;
+    fen_u32 camera_spp;      /* camera-pass samples per pixel in this batch */
+    fen_u32 batch;           /* batch number, for the camera pass's random numbers */
+} RenderParams;
+FEN_ASSERT_SIZE(RenderParams, 112);
+FEN_ASSERT_OFFSET(RenderParams, path_end, 64);
+FEN_ASSERT_OFFSET(RenderParams, seed, 72);
+FEN_ASSERT_OFFSET(RenderParams, batch, 108);
+
+FEN_NS_END
+
+#endif /* FEN_RENDER_H */

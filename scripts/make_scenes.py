@@ -1,0 +1,234 @@
+#!/usr/bin/env python3
+"""make_scenes.py — writes the scenes fenestra ships (scenes/*.gltf) from code.
+
+Run from the repository root: `python3 scripts/make_scenes.py`. Standard library only; the
+outputs are committed, so neither the build nor the tests run this. Each scene models no more
+than it needs (DESIGN.md §1): zero-thickness walls (surfaces are two-sided, and the renderer only
+lets light reach the camera from the side it arrived on), one ground plane, one glass pane.
+
+Frame: metres, +y up, +x east, +z south, -z north (DESIGN.md §1); azimuth from north towards east.
+"""
+import base64
+import json
+import math
+import os
+import struct
+
+
+class Gltf:
+    """A glTF 2.0 document with one embedded buffer."""
+
+    def __init__(self, generator):
+        self.doc = {
+            "asset": {"version": "2.0", "generator": generator},
+            "scene": 0,
+            "scenes": [{"nodes": []}],
+            "nodes": [], "meshes": [], "materials": [], "accessors": [],
+            "bufferViews": [], "buffers": [],
+        }
+        self.bin = bytearray()
+        self.material_index = {}
+
+    def material(self, name, rgb, transmission=None, ior=None):
+        if name in self.material_index:
+            return self.material_index[name]
+        m = {"name": name,
+             "pbrMetallicRoughness": {"baseColorFactor": list(rgb) + [1.0],
+                                      "metallicFactor": 0.0, "roughnessFactor": 1.0}}
+        ext = {}
+        if transmission is not None:
+            ext["KHR_materials_transmission"] = {"transmissionFactor": transmission}
+        if ior is not None:
+            ext["KHR_materials_ior"] = {"ior": ior}
+        if ext:
+            m["extensions"] = ext
+            for k in ext:
+                self.doc.setdefault("extensionsUsed", [])
+                if k not in self.doc["extensionsUsed"]:
+                    self.doc["extensionsUsed"].append(k)
+        self.doc["materials"].append(m)
+        self.material_index[name] = len(self.doc["materials"]) - 1
+        return self.material_index[name]
+
+    def _view(self, data, target):
+        while len(self.bin) % 4:
+            self.bin.append(0)
+        off = len(self.bin)
+        self.bin += data
+        self.doc["bufferViews"].append(
+            {"buffer": 0, "byteOffset": off, "byteLength": len(data), "target": target})
+        return len(self.doc["bufferViews"]) - 1
+
+    def mesh_node(self, name, triangles, material, extras=None):
+        """triangles: list of (p0, p1, p2) with p = (x, y, z) in world space."""
+        pos = [c for tri in triangles for p in tri for c in p]
+        data = struct.pack("<%df" % len(pos), *pos)
+        view = self._view(data, 34962)
+        lo = [min(pos[i::3]) for i in range(3)]
+        hi = [max(pos[i::3]) for i in range(3)]
+        self.doc["accessors"].append({"bufferView": view, "componentType": 5126,
+                                      "count": len(pos) // 3, "type": "VEC3",
+                                      "min": lo, "max": hi})
+        acc = len(self.doc["accessors"]) - 1
+        self.doc["meshes"].append({"name": name, "primitives": [
+            {"attributes": {"POSITION": acc}, "material": material}]})
+        node = {"name": name, "mesh": len(self.doc["meshes"]) - 1}
+        if extras:
+            node["extras"] = extras
+        return self._add_node(node)
+
+    def _add_node(self, node):
+        self.doc["nodes"].append(node)
+        idx = len(self.doc["nodes"]) - 1
+        self.doc["scenes"][0]["nodes"].append(idx)
+        return idx
+
+    def sun(self, name, altitude_deg, azimuth_deg, illuminance_lux):
+        """A directional light whose light travels away from the sun at (altitude, azimuth)."""
+        self.doc.setdefault("extensionsUsed", []).append("KHR_lights_punctual")
+        self.doc.setdefault("extensions", {})["KHR_lights_punctual"] = {
+            "lights": [{"name": name, "type": "directional", "intensity": illuminance_lux,
+                        "color": [1.0, 1.0, 1.0]}]}
+        to_sun = sky_direction(90.0 - altitude_deg, azimuth_deg)
+        # the node's +z must point at the sun (light travels along -z)
+        return self._add_node({"name": name, "rotation": quat_z_to(to_sun),
+                               "extensions": {"KHR_lights_punctual": {"light": 0}}})
+
+    def camera(self, name, position, target, yfov_deg, aspect):
+        self.doc.setdefault("cameras", []).append(
+            {"name": name, "type": "perspective",
+             "perspective": {"yfov": math.radians(yfov_deg), "aspectRatio": aspect,
+                             "znear": 0.05}})
+        fwd = normalize(sub(target, position))
+        return self._add_node({"name": name, "camera": len(self.doc["cameras"]) - 1,
+                               "translation": list(position),
+                               "rotation": quat_look(fwd, (0.0, 1.0, 0.0))})
+
+    def write(self, path, sky):
+        self.doc["scenes"][0]["extras"] = {"sky": sky}
+        self.doc["buffers"] = [{"byteLength": len(self.bin),
+                                "uri": "data:application/octet-stream;base64," +
+                                       base64.b64encode(bytes(self.bin)).decode()}]
+        with open(path, "w") as f:
+            json.dump(self.doc, f, indent=1)
+            f.write("\n")
+
+
+def sub(a, b):
+    return tuple(x - y for x, y in zip(a, b))
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def normalize(a):
+    n = math.sqrt(sum(x * x for x in a))
+    return tuple(x / n for x in a)
+
+
+def sky_direction(zenith_deg, azimuth_deg):
+    """Unit vector towards the sky point (DESIGN.md §1 convention)."""
+    t, p = math.radians(zenith_deg), math.radians(azimuth_deg)
+    return (math.sin(t) * math.sin(p), math.cos(t), -math.sin(t) * math.cos(p))
+
+
+def quat_from_matrix(m):
+    """Quaternion (x, y, z, w) of a rotation matrix given as columns m[0], m[1], m[2]."""
+    r = [[m[c][r] for c in range(3)] for r in range(3)]
+    tr = r[0][0] + r[1][1] + r[2][2]
+    if tr > 0:
+        s = math.sqrt(tr + 1.0) * 2
+        return [(r[2][1] - r[1][2]) / s, (r[0][2] - r[2][0]) / s, (r[1][0] - r[0][1]) / s, 0.25 * s]
+    if r[0][0] > r[1][1] and r[0][0] > r[2][2]:
+        s = math.sqrt(1.0 + r[0][0] - r[1][1] - r[2][2]) * 2
+        return [0.25 * s, (r[0][1] + r[1][0]) / s, (r[0][2] + r[2][0]) / s, (r[2][1] - r[1][2]) / s]
+    if r[1][1] > r[2][2]:
+        s = math.sqrt(1.0 + r[1][1] - r[0][0] - r[2][2]) * 2
+        return [(r[0][1] + r[1][0]) / s, 0.25 * s, (r[1][2] + r[2][1]) / s, (r[0][2] - r[2][0]) / s]
+    s = math.sqrt(1.0 + r[2][2] - r[0][0] - r[1][1]) * 2
+    return [(r[0][2] + r[2][0]) / s, (r[1][2] + r[2][1]) / s, 0.25 * s, (r[1][0] - r[0][1]) / s]
+
+
+def quat_look(forward, up):
+    """Rotation whose -z is `forward` and whose +y is as close to `up` as possible."""
+    z = tuple(-c for c in forward)
+    x = normalize(cross(up, z))
+    y = cross(z, x)
+    return quat_from_matrix([x, y, z])
+
+
+def quat_z_to(direction):
+    """Rotation taking +z to `direction`."""
+    z = normalize(direction)
+    helper = (0.0, 1.0, 0.0) if abs(z[1]) < 0.9 else (1.0, 0.0, 0.0)
+    x = normalize(cross(helper, z))
+    y = cross(z, x)
+    return quat_from_matrix([x, y, z])
+
+
+def quad(a, b, c, d):
+    """Two triangles of the planar quad a-b-c-d (in order around its edge)."""
+    return [(a, b, c), (a, c, d)]
+
+
+def rect_x(x0, x1, y0, y1, z):
+    """Rectangle in the plane z = const."""
+    return quad((x0, y0, z), (x1, y0, z), (x1, y1, z), (x0, y1, z))
+
+
+def rect_z(z0, z1, y0, y1, x):
+    """Rectangle in the plane x = const."""
+    return quad((x, y0, z0), (x, y0, z1), (x, y1, z1), (x, y1, z0))
+
+
+def rect_y(x0, x1, z0, z1, y):
+    """Rectangle in the plane y = const."""
+    return quad((x0, y, z0), (x1, y, z0), (x1, y, z1), (x0, y, z1))
+
+
+def wall_with_hole(x0, x1, y0, y1, z, hx0, hx1, hy0, hy1):
+    """Wall in the plane z = const with a rectangular opening, as four rectangles."""
+    return (rect_x(x0, x1, y0, hy0, z) + rect_x(x0, x1, hy1, y1, z) +
+            rect_x(x0, hx0, hy0, hy1, z) + rect_x(hx1, x1, hy0, hy1, z))
+
+
+def room_scene(path):
+    """scenes/room.gltf — the default scene: a 5 x 4 x 2.8 m room with one south window.
+
+    Sun at altitude 35 deg, azimuth 150 deg (south-south-east), 75 klux; CIE standard clear sky
+    (type 12) for the same sun, zenith luminance 3500 cd/m^2. The window (2 x 1.5 m, sill at
+    0.9 m) is glazed: thin glass, transmission 0.9, IOR 1.5. Outside, a 20 x 20 m ground plane of
+    albedo 0.2. The camera stands in the north-west corner at eye height, looking at the window
+    and the sun patch on the floor.
+    """
+    g = Gltf("fenestra scripts/make_scenes.py")
+    W, D, H = 5.0, 4.0, 2.8          # room: x in [0, W], z in [0, D] (south wall at z = D)
+    wx0, wx1, wy0, wy1 = 1.5, 3.5, 0.9, 2.4
+    floor = g.material("floor", (0.35, 0.3, 0.25))
+    wall = g.material("wall", (0.7, 0.7, 0.7))
+    ceiling = g.material("ceiling", (0.8, 0.8, 0.8))
+    ground = g.material("ground", (0.2, 0.2, 0.2))
+    glass = g.material("glass", (1.0, 1.0, 1.0), transmission=0.9, ior=1.5)
+    g.mesh_node("floor", rect_y(0, W, 0, D, 0.0), floor)
+    g.mesh_node("ceiling", rect_y(0, W, 0, D, H), ceiling)
+    g.mesh_node("north_wall", rect_x(0, W, 0, H, 0.0), wall)
+    g.mesh_node("west_wall", rect_z(0, D, 0, H, 0.0), wall)
+    g.mesh_node("east_wall", rect_z(0, D, 0, H, W), wall)
+    g.mesh_node("south_wall", wall_with_hole(0, W, 0, H, D, wx0, wx1, wy0, wy1), wall)
+    g.mesh_node("window", rect_x(wx0, wx1, wy0, wy1, D), glass, extras={"portal": True})
+    g.mesh_node("ground", rect_y(-7.5, 12.5, -8.0, 12.0, -0.02), ground)
+    g.sun("sun", 35.0, 150.0, 75000.0)
+    g.camera("camera", (0.4, 1.6, 0.4), (3.2, 0.4, 3.2), 60.0, 4.0 / 3.0)
+    g.write(path, {"type": "cie", "cie_type": 12, "zenith_luminance": 3500.0,
+                   "sun_altitude_deg": 35.0, "sun_azimuth_deg": 150.0})
+
+
+def main():
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
+    os.makedirs(root, exist_ok=True)
+    room_scene(os.path.join(root, "room.gltf"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,309 @@
+// analytic_test.cpp — whole renders against closed forms (DESIGN.md §2's normalisation checks and
+// more). Each compares the mean luminance of a region with its exact value within 4 standard
+// errors of that mean, the standard error measured from the 16 independent batches; each also
+// requires that error to be small enough for the comparison to mean something, and the NaN and
+// overflow counters to be zero.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "support/cl_fixture.h"
+#include "support/render_support.h"
+
+namespace fen {
+namespace {
+
+using test::rect;
+
+constexpr double kSigmas = 4.0;
+
+double Y(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+void expectClean(const RenderResult& r)
+{
+    EXPECT_EQ(r.badContributions, 0u);
+    EXPECT_EQ(r.overflows, 0u);
+    for (float v : r.image.rgb)
+        ASSERT_TRUE(std::isfinite(v));
+}
+
+// |measured - expected| <= 4 se, and se <= maxRelSe * expected.
+void expectMean(const RenderResult& r, std::size_t roi, double expected, double maxRelSe,
+                const char* what)
+{
+    const double m = r.roiMean(roi), se = r.roiMeanStdErr(roi);
+    std::printf("[ analytic ] %s: measured %.6g, expected %.6g, se %.3g (%.2f%%), %+.2f sigma\n", what,
+                m, expected, se, 100.0 * se / expected, (m - expected) / se);
+    EXPECT_NEAR(m, expected, kSigmas * se) << what << ": " << m << " vs " << expected << " (se " << se
+                                          << ", " << (m - expected) / se << " sigma)";
+    EXPECT_LE(se, maxRelSe * expected) << what << ": too noisy to test";
+}
+
+// The central half of the image.
+Roi centre(int w, int h) { return Roi{w / 4, h / 4, 3 * w / 4, 3 * h / 4}; }
+
+TEST(Analytic, LambertianPlaneUnderTheSun)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // L = rho E sin(h) / pi everywhere on the plane.
+    test::SceneBuilder b;
+    const glm::vec3 rho(0.5f, 0.4f, 0.3f);
+    b.add("plane", rect({-1, 0, -1}, {2, 0, 0}, {0, 0, 2}), b.material("m", rho));
+    const double h = 40.0, E = 10000.0;
+    b.sun(h, 200.0, E);
+    b.camera({0, 3, 0}, {0, 0, 0}, {0, 0, -1}, 30.0);
+    const int W = 64, H = 48;
+    const auto t = test::renderScene(*ctx, b.build(), W, H, 4u << 20, {centre(W, H)});
+    expectClean(t.result);
+    expectMean(t.result, 0, Y(rho) * E * std::sin(h * M_PI / 180) / M_PI, 0.005, "sun on plane");
+}
+
+TEST(Analytic, LambertianPlaneUnderUniformSky)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // L = rho L_sky: a plane sees the whole sky hemisphere.
+    test::SceneBuilder b;
+    const glm::vec3 rho(0.7f);
+    b.add("plane", rect({-1, 0, -1}, {2, 0, 0}, {0, 0, 2}), b.material("m", rho));
+    b.uniformSky(1000.0);
+    b.camera({0, 3, 0}, {0, 0, 0}, {0, 0, -1}, 30.0);
+    const int W = 64, H = 48;
+    const auto t = test::renderScene(*ctx, b.build(), W, H, 4u << 20, {centre(W, H)});
+    expectClean(t.result);
+    expectMean(t.result, 0, 0.7 * 1000.0, 0.005, "uniform sky on plane");
+}
+
+TEST(Analytic, LambertianPlaneUnderCieClearSkyAndSun)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Sun and a CIE standard clear sky together: L = rho (E_sun sin h + E_sky) / pi, E_sky the
+    // horizontal illuminance of the sky (an independent quadrature of the goniogram).
+    test::SceneBuilder b;
+    const glm::vec3 rho(0.5f);
+    b.add("plane", rect({-1, 0, -1}, {2, 0, 0}, {0, 0, 2}), b.material("m", rho));
+    const double h = 30.0, E = 60000.0;
+    b.sun(h, 135.0, E);
+    b.cieSky(12, 4000.0, h, 135.0);
+    b.camera({0, 3, 0}, {0, 0, 0}, {0, 0, -1}, 30.0);
+    const int W = 64, H = 48;
+    const auto t = test::renderScene(*ctx, b.build(), W, H, 4u << 20, {centre(W, H)});
+    expectClean(t.result);
+    const double Esky = t.sky->illuminance(glm::dvec3(0, 1, 0));
+    expectMean(t.result, 0, 0.5 * (E * std::sin(h * M_PI / 180) + Esky) / M_PI, 0.005,
+               "sun + CIE sky on plane");
+}
+
+TEST(Analytic, VerticalPlateSeesHalfAUniformSky)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Nothing below the horizon: a vertical plate receives pi L / 2, so L_plate = rho L / 2.
+    test::SceneBuilder b;
+    b.add("plate", rect({-1, 0, 0}, {2, 0, 0}, {0, 2, 0}), b.material("m", glm::vec3(0.6f)));
+    b.uniformSky(2000.0);
+    b.camera({0, 1, 4}, {0, 1, 0}, {0, 1, 0}, 20.0);
+    const int W = 64, H = 48;
+    const auto t = test::renderScene(*ctx, b.build(), W, H, 4u << 20, {centre(W, H)});
+    expectClean(t.result);
+    expectMean(t.result, 0, 0.6 * 2000.0 / 2.0, 0.005, "vertical plate");
+}
+
+TEST(Analytic, SunOnAWallLightsOnlyItsSunnySide)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // A vertical plate facing south and north; sun due south at altitude 30: the south face has
+    // L = rho E cos(30) / pi, the north face nothing at all (two-sided surfaces, no leaks).
+    test::SceneBuilder b;
+    b.add("plate", rect({-1, 0, 0}, {2, 0, 0}, {0, 2, 0}), b.material("m", glm::vec3(0.5f)));
+    b.sun(30.0, 180.0, 20000.0);
+    b.camera({0, 1, 4}, {0, 1, 0}, {0, 1, 0}, 20.0, "south");
+    const int W = 64, H = 48;
+    Scene s = b.build();
+    const auto south = test::renderScene(*ctx, s, W, H, 2u << 20, {centre(W, H)});
+    expectClean(south.result);
+    expectMean(south.result, 0, 0.5 * 20000.0 * std::cos(M_PI / 6) / M_PI, 0.005, "sunny face");
+    s.cameras[0].position = glm::dvec3(0, 1, -4);
+    s.cameras[0].forward = glm::dvec3(0, 0, 1);
+    s.cameras[0].right = glm::dvec3(-1, 0, 0);
+    const auto north = test::renderScene(*ctx, s, W, H, 2u << 20, {centre(W, H)});
+    EXPECT_EQ(north.result.roiMean(0), 0.0) << "light leaked to the shaded face";
+}
+
+TEST(Analytic, FloorUnderAnOpeningInABlackRoom)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Uniform sky seen through a 1 x 1 m opening in the ceiling of a black 2 x 2 x 1.2 m room:
+    // a floor point receives pi L F, F its configuration factor to the opening, so its
+    // luminance is rho L F (Siegel & Howell's parallel-rectangle formula), per pixel.
+    test::SceneBuilder b;
+    const int black = b.material("black", glm::vec3(0.0f));
+    const float S = 2.0f, Hc = 1.2f, o0 = 0.5f, o1 = 1.5f;
+    b.add("floor", rect({0, 0, 0}, {S, 0, 0}, {0, 0, S}), b.material("floor", glm::vec3(0.8f)));
+    b.add("walls", [&] {
+        std::vector<Triangle> w;
+        for (const auto& r : {rect({0, 0, 0}, {S, 0, 0}, {0, Hc, 0}), rect({0, 0, S}, {S, 0, 0}, {0, Hc, 0}),
+                              rect({0, 0, 0}, {0, 0, S}, {0, Hc, 0}), rect({S, 0, 0}, {0, 0, S}, {0, Hc, 0}),
+                              // ceiling around the opening
+                              rect({0, Hc, 0}, {S, 0, 0}, {0, 0, o0}), rect({0, Hc, o1}, {S, 0, 0}, {0, 0, S - o1}),
+                              rect({0, Hc, o0}, {o0, 0, 0}, {0, 0, o1 - o0}),
+                              rect({o1, Hc, o0}, {S - o1, 0, 0}, {0, 0, o1 - o0})})
+            w.insert(w.end(), r.begin(), r.end());
+        return w;
+    }(), black);
+    b.uniformSky(1000.0);
+    b.camera({1.0, 1.0, 1.0}, {1.0, 0.0, 1.0}, {0, 0, -1}, 40.0);
+    const int W = 48, H = 36;
+    const Roi roi{16, 12, 32, 24};
+    const Scene scene = b.build();
+    const auto t = test::renderScene(*ctx, scene, W, H, 24u << 20, {roi});
+    expectClean(t.result);
+    double expected = 0.0;
+    for (int y = roi.y0; y < roi.y1; ++y)
+        for (int x = roi.x0; x < roi.x1; ++x) {
+            const glm::dvec3 p = test::pixelOnPlaneY(scene.cameras[0], W, H, x + 0.5, y + 0.5, 0.0);
+            expected += 0.8 * 1000.0 * test::viewFactorToCeilingRect(p, o0, o1, o0, o1, Hc);
+        }
+    expected /= static_cast<double>(roi.pixels());
+    expectMean(t.result, 0, expected, 0.01, "floor under opening");
+}
+
+TEST(Analytic, SunThroughAGlassPaneLandsWhereGeometrySays)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Black 4 x 4 x 2 m room, a 1 x 1 m glass pane in the ceiling, the sun due south at 60 deg:
+    // the patch on the floor is the pane moved 2 / tan(60) = 1.155 m north, with luminance
+    // rho E sin(60) / pi * T (1 - R(30 deg)); outside it the floor is exactly black.
+    test::SceneBuilder b;
+    const int black = b.material("black", glm::vec3(0.0f));
+    const float S = 4.0f, Hc = 2.0f;
+    const float px0 = 1.5f, px1 = 2.5f, pz0 = 2.5f, pz1 = 3.5f;
+    b.add("floor", rect({0, 0, 0}, {S, 0, 0}, {0, 0, S}), b.material("floor", glm::vec3(0.5f)));
+    std::vector<Triangle> shell;
+    for (const auto& r : {rect({0, 0, 0}, {S, 0, 0}, {0, Hc, 0}), rect({0, 0, S}, {S, 0, 0}, {0, Hc, 0}),
+                          rect({0, 0, 0}, {0, 0, S}, {0, Hc, 0}), rect({S, 0, 0}, {0, 0, S}, {0, Hc, 0}),
+                          rect({0, Hc, 0}, {S, 0, 0}, {0, 0, pz0}), rect({0, Hc, pz1}, {S, 0, 0}, {0, 0, S - pz1}),
+                          rect({0, Hc, pz0}, {px0, 0, 0}, {0, 0, pz1 - pz0}),
+                          rect({px1, Hc, pz0}, {S - px1, 0, 0}, {0, 0, pz1 - pz0})})
+        shell.insert(shell.end(), r.begin(), r.end());
+    b.add("shell", shell, black);
+    const glm::vec3 T(0.9f);
+    b.add("pane", rect({px0, Hc, pz0}, {px1 - px0, 0, 0}, {0, 0, pz1 - pz0}), b.glass("glass", T, 1.5f));
+    const double E = 50000.0, h = 60.0;
+    b.sun(h, 180.0, E);
+    const double shift = Hc / std::tan(h * M_PI / 180);
+    b.camera({2.0, 1.0, 1.8}, {2.0, 0.0, 1.8}, {0, 0, -1}, 70.0);
+    const int W = 64, H = 64;
+    const Scene scene = b.build();
+    // Regions: pixels whose floor points are >= 4 cm inside the patch, and >= 4 cm outside it.
+    const CameraSpec& cam = scene.cameras[0];
+    auto floorAt = [&](int x, int y) { return test::pixelOnPlaneY(cam, W, H, x + 0.5, y + 0.5, 0.0); };
+    const double z0 = pz0 - shift, z1 = pz1 - shift;
+    Roi inside{W, H, 0, 0}, outside{0, 0, W, 4};
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const glm::dvec3 p = floorAt(x, y);
+            if (p.x > px0 + 0.04 && p.x < px1 - 0.04 && p.z > z0 + 0.04 && p.z < z1 - 0.04) {
+                inside.x0 = std::min(inside.x0, x);
+                inside.y0 = std::min(inside.y0, y);
+                inside.x1 = std::max(inside.x1, x + 1);
+                inside.y1 = std::max(inside.y1, y + 1);
+            }
+        }
+    // Shrink to a rectangle fully inside (the patch is a rectangle in the image up to perspective).
+    inside = Roi{inside.x0 + 1, inside.y0 + 1, inside.x1 - 1, inside.y1 - 1};
+    for (int y = inside.y0; y < inside.y1; ++y)
+        for (int x = inside.x0; x < inside.x1; ++x) {
+            const glm::dvec3 p = floorAt(x, y);
+            ASSERT_TRUE(p.x > px0 && p.x < px1 && p.z > z0 && p.z < z1);
+        }
+    for (int y = outside.y0; y < outside.y1; ++y)
+        for (int x = outside.x0; x < outside.x1; ++x) {
+            const glm::dvec3 p = floorAt(x, y);
+            ASSERT_TRUE(p.z < z0 - 0.04 || p.z > z1 + 0.04 || p.x < px0 - 0.04 || p.x > px1 + 0.04);
+        }
+    const auto t = test::renderScene(*ctx, scene, W, H, 4u << 20, {inside, outside});
+    expectClean(t.result);
+    const double ci = std::sin(h * M_PI / 180);  // cosine to the pane's (vertical) normal
+    const double ct = std::sqrt(1 - (1 - ci * ci) / 2.25);
+    const double rs = (ci - 1.5 * ct) / (ci + 1.5 * ct), rp = (1.5 * ci - ct) / (1.5 * ci + ct);
+    const double R = 0.5 * (rs * rs + rp * rp);
+    expectMean(t.result, 0, 0.5 * E * std::sin(h * M_PI / 180) / M_PI * 0.9 * (1 - R), 0.01,
+               "sun patch through glass");
+    EXPECT_EQ(t.result.roiMean(1), 0.0) << "light outside the geometric sun patch";
+}
+
+TEST(Analytic, IntegratingSphereConservesEnergyOverManyBounces)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // A white sphere (albedo 0.8) with a polar cap of half-angle 30 deg removed, under a uniform
+    // sky: every wall point has the same luminance, rho L f / (1 - rho (1 - f)) with f the cap's
+    // share of the sphere, (1 - cos 30)/2 -- the integrating-sphere result, which holds because a
+    // sphere's points all exchange light in proportion to area. Paths bounce ~4 times on average.
+    test::SceneBuilder b;
+    const double rho = 0.8, alpha = 30.0 * M_PI / 180.0;
+    const int rings = 180, segs = 360;
+    std::vector<Triangle> tris;
+    auto at = [&](int r, int s) -> glm::vec3 {
+        const double th = M_PI * r / rings, ph = 2.0 * M_PI * (s % segs) / segs;
+        return glm::vec3(glm::dvec3(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)));
+    };
+    const int capRings = static_cast<int>(std::lround(alpha / M_PI * rings));
+    for (int r = capRings; r < rings; ++r)
+        for (int s = 0; s < segs; ++s) {
+            const glm::vec3 a = at(r, s), bb = at(r, s + 1), c = at(r + 1, s + 1), d = at(r + 1, s);
+            tris.push_back({a, bb, d});
+            if (r != rings - 1)
+                tris.push_back({bb, c, d});
+        }
+    b.add("sphere", tris, b.material("white", glm::vec3(float(rho))));
+    b.uniformSky(1000.0);
+    b.camera({0, 0, 0}, {0, -1, 0}, {0, 0, -1}, 60.0);
+    const int W = 32, H = 32;
+    const auto t = test::renderScene(*ctx, b.build(), W, H, 8u << 20, {Roi{0, 0, W, H}}, 1, 200);
+    expectClean(t.result);
+    // f from the tessellation's own cap: rings are at exact multiples of 180/rings degrees.
+    const double capAngle = M_PI * capRings / rings;
+    const double f = (1.0 - std::cos(capAngle)) / 2.0;
+    expectMean(t.result, 0, rho * 1000.0 * f / (1.0 - rho * (1.0 - f)), 0.01, "integrating sphere");
+}
+
+TEST(Analytic, SkySeenDirectlyAndThroughGlass)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Camera looking up: half the view through a glass pane (L T (1 - R(theta)) per pixel), half
+    // at the open sky (exactly L). Traced from the camera, so the only error is the camera
+    // samples' spread over angles inside a pixel (a few 1e-4 here).
+    test::SceneBuilder b;
+    const glm::vec3 T(0.8f);
+    b.add("pane", rect({-3, 2, -3}, {6, 0, 0}, {0, 0, 3}), b.glass("glass", T, 1.5f));
+    b.uniformSky(3000.0);
+    b.camera({0, 0, 0}, {0, 1, 0}, {0, 0, -1}, 60.0);
+    const int W = 32, H = 32;
+    Scene scene = b.build();
+    const auto t = test::renderScene(*ctx, scene, W, H, 1u << 16, {});
+    expectClean(t.result);
+    const CameraSpec& cam = scene.cameras[0];
+    int through = 0, open = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const double tanY = std::tan(cam.yfovRad / 2), tanX = tanY;
+            const glm::dvec3 d = glm::normalize(cam.forward + (2.0 * (x + 0.5) / W - 1) * tanX * cam.right +
+                                                (1.0 - 2.0 * (y + 0.5) / H) * tanY * cam.up);
+            const glm::dvec3 hitPane = d * (2.0 / d.y);
+            const double Lm = t.result.image.luminance(std::size_t(y) * W + x);
+            if (hitPane.z < -0.1) {
+                const double ci = d.y, ct = std::sqrt(1 - (1 - ci * ci) / 2.25);
+                const double rs = (ci - 1.5 * ct) / (ci + 1.5 * ct), rp = (1.5 * ci - ct) / (1.5 * ci + ct);
+                EXPECT_NEAR(Lm, 3000.0 * 0.8 * (1 - 0.5 * (rs * rs + rp * rp)), 3.0) << x << "," << y;
+                ++through;
+            } else if (hitPane.z > 0.1) {
+                EXPECT_NEAR(Lm, 3000.0, 1e-3) << x << "," << y;
+                ++open;
+            }
+        }
+    EXPECT_GT(through, 300);
+    EXPECT_GT(open, 300);
+}
+
+}  // namespace
+}  // namespace fen
