@@ -77,6 +77,10 @@ int main(int argc, char** argv)
     benchCmd->add_flag("--sweep-quality", bench.sweepQuality,
                        "Also build a full-sweep SAH tree and compare SAH costs");
     benchCmd->add_flag("--json", bench.json, "Machine-readable output");
+    benchCmd->add_flag("--render", bench.render,
+                       "Also render the scene each round (procedural scenes get an opening and "
+                       "lights) and compare its rays/s with traversal");
+    benchCmd->add_option("--render-paths", bench.renderPaths, "Light paths per render (default 4194304)");
 
     fen::RenderOptions render;
     std::string renderLayout;
@@ -99,7 +103,7 @@ int main(int argc, char** argv)
     renderCmd->add_option("--layout", renderLayout, "BVH layout: bvh2, bvh4 or bvh8 (default: the device's)");
     renderCmd->add_option("--batches", render.batches, "Independent batches for the noise estimate (default 16)");
     renderCmd->add_option("--camera-spp", render.cameraSpp,
-                          "Camera-pass samples per pixel per batch, for the sky seen directly (default 4)");
+                          "Camera-pass samples per pixel per batch, for the sky seen directly (default 1)");
     renderCmd->add_option("--pool", render.poolSize, "Path slots on the device (default: 2^19 CPU, 2^21 GPU)");
     renderCmd->add_option("--exposure", render.exposure, "PNG preview exposure (default: ROI mean to mid-grey)");
     renderCmd->add_flag("--progress", progressOn, "Show progress even when stderr is not a terminal");

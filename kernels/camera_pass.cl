@@ -4,12 +4,14 @@
  * Work-item = pixel: params->camera_spp rays at uniform positions in the pixel (box filter); each
  * passes through glass (weight T (1 - R), straight on) until it leaves the scene, where it picks up
  * the sky's luminance, or hits anything else, where it picks up nothing (that light is the light
- * tracer's). Writes out[pixel] = mean over the samples (rgb). Atomics: camera-ray counter.
+ * tracer's). Writes out[pixel] = mean over the samples (rgb). Atomics: camera-ray counter (per
+ * work-group).
  */
 #include "lib/accumulate.h"
 #include "lib/bvh_traverse.h"
 #include "lib/camera.h"
 #include "lib/fresnel.h"
+#include "lib/group_count.h"
 #include "lib/ray_offset.h"
 #include "lib/rng.h"
 #include "lib/scene_access.h"
@@ -17,16 +19,15 @@
 
 #define FEN_CAMERA_MAX_GLASS 16
 
-kernel void camera_pass(global const RenderParams* params, global const DevCamera* cam,
-                        global const BvhNode* nodes, global const TriPacket4* packets,
-                        global const ShadeTri* tris, global const DevMaterial* materials,
-                        global const float* sky_theta, global const float* sky_phi,
-                        global const float* sky_values, global float4* out,
-                        volatile global ulong* counters)
+/* Camera samples of one pixel; returns the rays traced. */
+static inline uint camera_pixel(uint pixel, global const RenderParams* params, global const DevCamera* cam,
+                                global const BvhNode* nodes, global const TriPacket4* packets,
+                                global const ShadeTri* tris, global const DevMaterial* materials,
+                                global const float* sky_theta, global const float* sky_phi,
+                                global const float* sky_values, global float4* out)
 {
-    const uint pixel = get_global_id(0);
     if (pixel >= cam->width * cam->height)
-        return;
+        return 0;
     Sky sky;
     sky.theta = sky_theta;
     sky.phi = sky_phi;
@@ -35,7 +36,7 @@ kernel void camera_pass(global const RenderParams* params, global const DevCamer
     sky.np = params->sky_phi_nodes;
     const uint px = pixel % cam->width, py = pixel / cam->width;
     float3 sum = (float3)(0.0f);
-    ulong rays = 0;
+    uint rays = 0;
     for (uint s = 0; s < params->camera_spp; ++s) {
         const float4 u = rng_camera(params->seed, pixel, s, params->batch);
         const float3 dir = camera_direction(cam, (float)px + u.x, (float)py + u.y);
@@ -61,5 +62,18 @@ kernel void camera_pass(global const RenderParams* params, global const DevCamer
         }
     }
     out[pixel] = (float4)(sum / (float)max(params->camera_spp, 1u), 0.0f);
-    counter_add(counters, FEN_CTR_CAMERA_RAYS, rays);
+    return rays;
+}
+
+kernel void camera_pass(global const RenderParams* params, global const DevCamera* cam,
+                        global const BvhNode* nodes, global const TriPacket4* packets,
+                        global const ShadeTri* tris, global const DevMaterial* materials,
+                        global const float* sky_theta, global const float* sky_phi,
+                        global const float* sky_values, global float4* out,
+                        volatile global ulong* counters)
+{
+    local uint rays_in_group;
+    const uint rays = camera_pixel(get_global_id(0), params, cam, nodes, packets, tris, materials,
+                                   sky_theta, sky_phi, sky_values, out);
+    group_count_add(counters + FEN_CTR_CAMERA_RAYS, rays, &rays_in_group);
 }

@@ -3,28 +3,41 @@
  * Work-item i: if connections[i] names a pixel, the segment from its origin to the pinhole is
  * traced (glass multiplies by T (1 - R), anything opaque blocks: lib/transmittance.h) and the
  * surviving contribution is added to the pixel in 64-bit fixed point (lib/accumulate.h).
- * Atomics: pixel accumulators, shadow-ray counter.
+ * Atomics: pixel accumulators, shadow-ray counter (per work-group).
  */
 #include "lib/accumulate.h"
 #include "lib/bvh_traverse.h"
+#include "lib/group_count.h"
 #include "lib/transmittance.h"
+
+/* Traces connection i; returns 1 if there was one. */
+static inline uint connect_one(uint i, global const RenderParams* params,
+                               global const Connection* connections, global const BvhNode* nodes,
+                               global const TriPacket4* packets, global const ShadeTri* tris,
+                               global const DevMaterial* materials, volatile global ulong* accum,
+                               volatile global ulong* counters)
+{
+    if (i >= params->pool_size)
+        return 0;
+    const Connection c = connections[i];
+    const uint pixel = as_uint(c.org.w);
+    if (pixel == FEN_INVALID_ID)
+        return 0;
+    const RayPre r = ray_setup(c.org.xyz, c.to_cam.xyz, 0.0f, 1.0f, FEN_BVH_WIDTH);
+    const float3 trans = segment_transmittance(nodes, packets, tris, materials, &r,
+                                               normalize(c.to_cam.xyz));
+    if (trans.x > 0.0f || trans.y > 0.0f || trans.z > 0.0f)
+        splat_rgb(accum, pixel, c.value.xyz * trans, params->fixed_scale, counters);
+    return 1;
+}
 
 kernel void connect_paths(global const RenderParams* params, global const Connection* connections,
                           global const BvhNode* nodes, global const TriPacket4* packets,
                           global const ShadeTri* tris, global const DevMaterial* materials,
                           volatile global ulong* accum, volatile global ulong* counters)
 {
-    const uint i = get_global_id(0);
-    if (i >= params->pool_size)
-        return;
-    const Connection c = connections[i];
-    const uint pixel = as_uint(c.org.w);
-    if (pixel == FEN_INVALID_ID)
-        return;
-    counter_add(counters, FEN_CTR_SHADOW_RAYS, 1);
-    const RayPre r = ray_setup(c.org.xyz, c.to_cam.xyz, 0.0f, 1.0f, FEN_BVH_WIDTH);
-    const float3 trans = segment_transmittance(nodes, packets, tris, materials, &r,
-                                               normalize(c.to_cam.xyz));
-    if (trans.x > 0.0f || trans.y > 0.0f || trans.z > 0.0f)
-        splat_rgb(accum, pixel, c.value.xyz * trans, params->fixed_scale, counters);
+    local uint traced_in_group;
+    const uint traced = connect_one(get_global_id(0), params, connections, nodes, packets, tris,
+                                    materials, accum, counters);
+    group_count_add(counters + FEN_CTR_SHADOW_RAYS, traced, &traced_in_group);
 }

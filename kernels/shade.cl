@@ -11,32 +11,33 @@
  *    *= rho / q, so its largest channel keeps its value);
  *  - a path reaching params->max_depth interactions dies (counted: a bias that is reported).
  * Writes paths[i] and connections[i] (pixel FEN_INVALID_ID when there is none). Atomics: the
- * alive and max-depth counters.
+ * alive counter (per work-group), the max-depth counter.
  */
 #include "lib/accumulate.h"
 #include "lib/camera.h"
 #include "lib/fresnel.h"
+#include "lib/group_count.h"
 #include "lib/ray_offset.h"
 #include "lib/rng.h"
 #include "lib/sampling.h"
 #include "lib/scene_access.h"
 
-kernel void shade_paths(global const RenderParams* params, global PathState* paths,
-                        global const Hit* hits, global const ShadeTri* tris,
-                        global const DevMaterial* materials, global const DevCamera* cam,
-                        global Connection* connections, volatile global ulong* counters)
+/* Shades slot i; returns 1 if its path goes on. */
+static inline uint shade_one(uint i, global const RenderParams* params, global PathState* paths,
+                             global const Hit* hits, global const ShadeTri* tris,
+                             global const DevMaterial* materials, global const DevCamera* cam,
+                             global Connection* connections, volatile global ulong* counters)
 {
-    const uint i = get_global_id(0);
     if (i >= params->pool_size)
-        return;
+        return 0;
     connections[i].org.w = as_float(FEN_INVALID_ID);
     PathState p = paths[i];
     if (!(p.flags & FEN_PATH_ALIVE))
-        return;
+        return 0;
     const Hit h = hits[i];
     if (h.prim == FEN_INVALID_ID) {
         paths[i].flags = 0;
-        return;
+        return 0;
     }
     const global ShadeTri* tri = tris + h.prim;
     const global DevMaterial* m = materials + as_uint(tri->p0.w);
@@ -94,10 +95,21 @@ kernel void shade_paths(global const RenderParams* params, global PathState* pat
     }
     if (!alive) {
         paths[i].flags = 0;
-        return;
+        return 0;
     }
     p.org = (float4)(offset_ray_origin(x, offset_m, ng, next), 0.0f);
     p.dir = (float4)(next, 0.0f);
     paths[i] = p;
-    counter_add(counters, FEN_CTR_ALIVE, 1);
+    return 1;
+}
+
+kernel void shade_paths(global const RenderParams* params, global PathState* paths,
+                        global const Hit* hits, global const ShadeTri* tris,
+                        global const DevMaterial* materials, global const DevCamera* cam,
+                        global Connection* connections, volatile global ulong* counters)
+{
+    local uint alive_in_group;
+    const uint alive = shade_one(get_global_id(0), params, paths, hits, tris, materials, cam,
+                                 connections, counters);
+    group_count_add(counters + FEN_CTR_ALIVE, alive, &alive_in_group);
 }

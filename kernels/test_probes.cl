@@ -80,19 +80,21 @@ kernel void sampling_probe(global float4* out, uint n, uint kind, float a, float
 }
 
 /* out[i] = entry chosen by cdf_search from 32 random bits. */
-kernel void cdf_probe(global const ulong* cdf, uint cells, global uint* out, uint n, uint seed)
+kernel void cdf_probe(global const ulong* cdf, global const uint* guide, uint shift,
+                      global uint* out, uint n, uint seed)
 {
     const uint i = get_global_id(0);
     if (i >= n)
         return;
     const RngBlock r = rng_bits(seed, 0x7654321u, i, 0, 0, 0);
-    out[i] = cdf_search(cdf, cells, r.x);
+    out[i] = cdf_search(cdf, guide, shift, r.x);
 }
 
-/* out[i].xyz = sampled direction towards the sky, .w = its weight factor_k sin(theta);
-   lum[i] = sky_eval in the sampled direction. */
+/* out[i].xyz = sampled direction towards the sky (cell from the integer CDF over the cells),
+   .w = its weight factor_k sin(theta); lum[i] = sky_eval in the sampled direction. */
 kernel void sky_probe(global const float* theta, global const float* phi, global const float* values,
-                      global const ulong* cdf, global const float* factor, uint nt, uint np,
+                      global const ulong* cdf, global const uint* guide, uint guide_shift,
+                      global const float* factor, uint nt, uint np,
                       global float4* out, global float* lum, uint n, uint seed)
 {
     const uint i = get_global_id(0);
@@ -102,14 +104,13 @@ kernel void sky_probe(global const float* theta, global const float* phi, global
     s.theta = theta;
     s.phi = phi;
     s.values = values;
-    s.cdf = cdf;
     s.factor = factor;
     s.nt = nt;
     s.np = np;
     const RngBlock bits = rng_bits(seed, 0x2468ace0u, i, 0, 0, 0);
-    const float4 u = rng_to_floats(bits);
+    const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
     float w;
-    const float3 d = sky_sample(&s, bits.y, u.z, u.w, &w);
+    const float3 d = sky_sample(&s, cdf_search(cdf, guide, guide_shift, bits.x), u.z, u.w, &w);
     out[i] = (float4)(d, w);
     lum[i] = sky_eval(&s, d);
 }

@@ -17,6 +17,8 @@ struct BenchOptions {
     bool embree = true;
     bool sweepQuality = false;       // also build the full-sweep SAH tree and compare costs
     bool json = false;
+    bool render = false;             // also render the scene, interleaved, and compare rays/s
+    std::uint64_t renderPaths = 1u << 22;
 };
 
 int runBench(const BenchOptions& opt);

@@ -154,6 +154,48 @@ BenchScene benchSceneNamed(const std::string& nameOrPath)
     return benchSceneFrom(loadGltf(nameOrPath));
 }
 
+void makeRenderable(Scene& room)
+{
+    const float x0 = 3.5f, x1 = 6.5f, y0 = 0.8f, y1 = 2.4f, zWall = 8.0f;
+    Scene out = room;
+    out.triangles.clear();
+    out.triangleNode.clear();
+    out.triangleMaterial.clear();
+    out.materials = {Material{"white", glm::vec3(0.6f)}};
+    for (std::size_t i = 0; i < room.triangles.size(); ++i) {
+        const Triangle& t = room.triangles[i];
+        const glm::vec3 c = (t.p0 + t.p1 + t.p2) / 3.0f;
+        const bool southWall = t.p0.z == zWall && t.p1.z == zWall && t.p2.z == zWall;
+        if (southWall && c.x > x0 && c.x < x1 && c.y > y0 && c.y < y1)
+            continue;
+        out.triangles.push_back(t);
+        out.triangleNode.push_back(0);
+        out.triangleMaterial.push_back(0);
+    }
+    out.sun.present = true;
+    out.sun.nodeName = "sun";
+    const double alt = 40.0 * M_PI / 180.0, az = 160.0 * M_PI / 180.0;
+    out.sun.travelDirection = -glm::dvec3(std::cos(alt) * std::sin(az), std::sin(alt), -std::cos(alt) * std::cos(az));
+    out.sun.illuminanceRgb_lux = glm::dvec3(80000.0);
+    out.sky.type = SkySpec::Type::Cie;
+    out.sky.where = "bench room sky";
+    out.sky.cieType = 12;
+    out.sky.zenithLuminance_cd_m2 = 4000.0;
+    out.sky.sunAltitudeDeg = 40.0;
+    out.sky.sunAzimuthDeg = 160.0;
+    CameraSpec cam;
+    cam.nodeName = "camera";
+    cam.position = glm::dvec3(0.5, 1.6, 0.5);
+    cam.forward = glm::normalize(glm::dvec3(5.0, 0.6, 6.0) - cam.position);
+    cam.right = glm::normalize(glm::cross(cam.forward, glm::dvec3(0, 1, 0)));
+    cam.up = glm::cross(cam.right, cam.forward);
+    cam.yfovRad = 60.0 * M_PI / 180.0;
+    cam.aspectRatio = 4.0 / 3.0;
+    out.cameras = {cam};
+    out.source = room.source + " with an opening";
+    room = std::move(out);
+}
+
 BenchScene benchSceneFrom(Scene scene)
 {
     BenchScene s;

@@ -30,6 +30,12 @@ BenchScene makeBenchRoom(std::uint32_t seed = 1);
 BenchScene makeBenchSpheres(std::uint32_t seed = 1);
 // "room", "spheres", or a glTF file.
 BenchScene benchSceneNamed(const std::string& nameOrPath);
+
+// The benchmark room made renderable (for `fenestra bench --render`): a 3 x 1.6 m opening cut
+// in its south wall (the wall's quads inside it removed), the sun at altitude 40 deg, azimuth
+// 160 deg, 80 klux, a CIE clear sky (type 12), and a camera in the north-west corner looking at
+// the opening and the floor. Every surface has albedo 0.6.
+void makeRenderable(Scene& room);
 // Any scene: free points are uniform in its bounding box (solid objects are not known).
 BenchScene benchSceneFrom(Scene scene);
 

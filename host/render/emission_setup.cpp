@@ -1,4 +1,4 @@
-// emission_setup.cpp — uniform emission parameters and sky tables (emission_setup.h).
+// emission_setup.cpp — uniform emission parameters and sky arrays (emission_setup.h).
 #include "render/emission_setup.h"
 
 #include <algorithm>
@@ -6,12 +6,54 @@
 
 namespace fen {
 
+namespace {
+
+constexpr double kUnits = 4294967296.0;  // 2^32
+
+}  // namespace
+
+IntegerCdf makeIntegerCdf(const std::vector<double>& weight)
+{
+    IntegerCdf c;
+    double total = 0.0;
+    for (double w : weight)
+        total += std::max(0.0, w);
+    std::vector<std::uint64_t> n(weight.size(), 0);
+    std::uint64_t sum = 0;
+    std::size_t largest = 0;
+    for (std::size_t e = 0; e < weight.size(); ++e) {
+        if (weight[e] > 0.0)
+            n[e] = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(weight[e] / total * kUnits));
+        sum += n[e];
+        if (n[e] > n[largest])
+            largest = e;
+    }
+    // The rounding remainder (a few units, either sign) goes to the largest entry.
+    n[largest] = n[largest] + (std::uint64_t{1} << 32) - sum;
+    c.cdf.assign(weight.size() + 1, 0);
+    for (std::size_t e = 0; e < weight.size(); ++e)
+        c.cdf[e + 1] = c.cdf[e] + n[e];
+    // Guide table: 2^bits >= 2 entries per CDF entry, guide[b] = the entry holding r = b 2^shift.
+    std::uint32_t bits = 1;
+    while ((std::size_t{1} << bits) < 2 * weight.size() && bits < 24)
+        ++bits;
+    c.guideShift = 32 - bits;
+    c.guide.assign(std::size_t{1} << bits, 0);
+    std::size_t e = 0;
+    for (std::size_t b = 0; b < c.guide.size(); ++b) {
+        const std::uint64_t r = static_cast<std::uint64_t>(b) << c.guideShift;
+        while (e + 1 < weight.size() && c.cdf[e + 1] <= r)
+            ++e;
+        c.guide[b] = static_cast<std::uint32_t>(e);
+    }
+    return c;
+}
+
 SkyTables makeSkyTables(const std::optional<Goniogram>& sky)
 {
     SkyTables t;
     if (!sky || sky->integral() <= 0.0) {
-        t.theta = t.phi = t.values = t.factor = {0.0f};
-        t.cdf = {0};
+        t.theta = t.phi = t.values = {0.0f};
         return t;
     }
     const Goniogram& g = *sky;
@@ -26,42 +68,12 @@ SkyTables makeSkyTables(const std::optional<Goniogram>& sky)
         t.values.push_back(static_cast<float>(v));
         t.maxLuminance_cd_m2 = std::max(t.maxLuminance_cd_m2, v);
     }
-    // Cells by their integral of g sin(theta): the sampled direction's density then tracks g per
-    // steradian, so sky paths carry nearly equal weights. Integer units of 2^-32: every cell with
-    // light gets at least one (none is lost), the units sum to exactly 2^32, and the weight uses
-    // the probability the device realises.
-    std::vector<double> w(t.cells);
-    double total = 0.0;
     for (std::uint32_t i = 0; i + 1 < t.thetaNodes; ++i)
         for (std::uint32_t j = 0; j + 1 < t.phiNodes; ++j) {
-            const double I = g.cellIntegralSin(i, j);
-            w[i * (t.phiNodes - 1) + j] = I;
-            total += I;
+            t.cellSin.push_back(g.cellIntegralSin(i, j));
+            t.cellFlat.push_back(g.cellIntegralFlat(i, j));
+            t.integral_cd_m2_sr += t.cellSin.back();
         }
-    t.integral_cd_m2_sr = total;
-    const double units = 4294967296.0;
-    std::vector<std::uint64_t> n(t.cells);
-    std::uint64_t sum = 0;
-    std::uint32_t largest = 0;
-    for (std::uint32_t k = 0; k < t.cells; ++k) {
-        n[k] = w[k] > 0.0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(w[k] / total * units))
-                          : 0;
-        sum += n[k];
-        if (n[k] > n[largest])
-            largest = k;
-    }
-    n[largest] += (std::uint64_t{1} << 32) - sum;  // rounding remainder: a few units at most
-    t.cdf.resize(t.cells + 1);
-    t.cdf[0] = 0;
-    for (std::uint32_t k = 0; k < t.cells; ++k)
-        t.cdf[k + 1] = t.cdf[k] + n[k];
-    t.factor.resize(t.cells);
-    for (std::uint32_t k = 0; k < t.cells; ++k) {
-        const std::uint32_t i = k / (t.phiNodes - 1), j = k % (t.phiNodes - 1);
-        t.factor[k] = n[k] > 0 ? static_cast<float>(g.cellIntegralFlat(i, j) * units /
-                                                    static_cast<double>(n[k]))
-                               : 0.0f;
-    }
     return t;
 }
 
@@ -80,25 +92,26 @@ EmissionSetup setupUniformEmission(const Scene& scene, const SkyTables& sky)
     const double sunY = 0.2126 * E.r + 0.7152 * E.g + 0.0722 * E.b;
     e.sunFlux = sunY * disk;
     e.skyFlux = sky.integral_cd_m2_sr * disk;
-    const double total = e.sunFlux + e.skyFlux;
-    if (total > 0.0) {
-        // An integer threshold on 32 random bits: P(sun) is exactly threshold / 2^32, and both
-        // sources stay possible whenever both send light.
-        if (e.skyFlux <= 0.0) {
-            e.sunThreshold = 0xFFFFFFFFu;
-            e.pSun = 1.0;
-        } else if (e.sunFlux > 0.0) {
-            const double t = std::round(e.sunFlux / total * 4294967296.0);
-            e.sunThreshold = static_cast<std::uint32_t>(std::clamp(t, 1.0, 4294967294.0));
-            e.pSun = e.sunThreshold / 4294967296.0;
-        }
-        if (e.pSun > 0.0)
-            e.sunWeight = E * disk / e.pSun;
-        if (e.pSun < 1.0)
-            e.skyWeight = disk / (1.0 - e.pSun);
+
+    // Entry 0: the sun, by its flux; entries 1 + k: sky cells, by their flux (disk x cellSin).
+    std::vector<double> w{e.sunFlux};
+    for (double s : sky.cellSin)
+        w.push_back(s * disk);
+    if (e.sunFlux + e.skyFlux <= 0.0)
+        w[0] = 1.0;  // no light at all: a table that draws the (zero-weight) sun
+    e.sources = makeIntegerCdf(w);
+    e.pSun = e.sunFlux > 0.0 ? e.sources.probability(0) : 0.0;
+    if (e.pSun > 0.0)
+        e.sunWeight = E * disk / e.pSun;
+    e.skyWeight = disk;
+    e.skyFactor.resize(sky.cells);
+    for (std::uint32_t k = 0; k < sky.cells; ++k) {
+        const double p = e.sources.probability(1 + k);
+        e.skyFactor[k] = p > 0.0 ? static_cast<float>(sky.cellFlat[k] / p) : 0.0f;
     }
-    e.referenceLuminance_cd_m2 =
-        std::max({sunY / M_PI, sky.maxLuminance_cd_m2, 1e-6});
+    if (e.skyFactor.empty())
+        e.skyFactor = {0.0f};
+    e.referenceLuminance_cd_m2 = std::max({sunY / M_PI, sky.maxLuminance_cd_m2, 1e-6});
     return e;
 }
 
@@ -109,10 +122,10 @@ void fillEmissionParams(const EmissionSetup& e, const SkyTables& sky, dev::Rende
     p.sun_weight = {static_cast<float>(e.sunWeight.r), static_cast<float>(e.sunWeight.g),
                     static_cast<float>(e.sunWeight.b), 0.0f};
     p.sky_weight = {static_cast<float>(e.skyWeight), 0.0f, 0.0f, 0.0f};
-    p.sun_threshold = e.sunThreshold;
     p.sky_cells = sky.cells;
     p.sky_theta_nodes = sky.thetaNodes;
     p.sky_phi_nodes = sky.phiNodes;
+    p.source_guide_shift = e.sources.guideShift;
 }
 
 }  // namespace fen

@@ -21,7 +21,7 @@ struct RenderOptions {
     std::string method = "uniform";
     int bvhWidth = 0;
     int batches = 16;
-    int cameraSpp = 4;
+    int cameraSpp = 1;
     std::uint32_t poolSize = 0;
     double exposure = 0.0;          // PNG preview; 0 = automatic
     int progress = -1;              // -1: when stderr is a terminal; 0 off; 1 on

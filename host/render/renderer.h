@@ -28,7 +28,7 @@ struct RenderSettings {
     std::uint64_t paths = 0;     // total light paths; 0 = use timeSeconds
     double timeSeconds = 0.0;
     int batches = 16;            // independent batches (>= 2): the noise estimate's sample size
-    int cameraSpp = 4;           // camera-pass samples per pixel, per batch
+    int cameraSpp = 1;           // camera-pass samples per pixel, per batch
     std::uint32_t seed = 1;
     int maxBounces = 64;         // surface interactions a path may have (bias beyond: reported)
     int bvhWidth = 0;            // 0 = the device's default layout

@@ -1,11 +1,12 @@
 /* emit_uniform.h — the `uniform` emission strategy (DESIGN.md §3.1, the paper's "no optimisation").
  *
- * Source: the sun if the path's first 32 random bits fall below sun_threshold, else the sky (host:
- * in proportion to their flux through the emission disk; weights use the exact threshold / 2^32). Direction: the sun's (or uniform in its cone when it has an angular
- * radius), or the sky sampled by sky_sample(). Origin: uniform on the disk of radius R orthogonal
- * to the direction that covers the scene's bounding sphere, moved back outside it. The weight is
- * the emitted radiance over the density of (origin, direction): for the sun E pi R^2 / P(sun), for
- * the sky (pi R^2 / p_sky) g / p(v) = (pi R^2 / p_sky) factor_k sin(theta).
+ * One Philox block per path: its first 32 bits pick an entry of the source table (entry 0 the
+ * sun, entry 1 + k sky cell k; exact probabilities, host: emission_setup.h), the other 96 bits
+ * give four 24-bit uniforms for the direction inside the sky cell (or the sun's cone) and the
+ * origin. Origin: uniform on the disk of radius R orthogonal to the direction that covers the
+ * scene's bounding sphere, moved back outside it. The weight is the emitted radiance over the
+ * density of (origin, direction): for the sun E pi R^2 / P(sun), for the sky
+ * pi R^2 g / p(v) = pi R^2 factor_k sin(theta).
  */
 #ifndef FEN_EMIT_UNIFORM_H
 #define FEN_EMIT_UNIFORM_H
@@ -14,31 +15,38 @@
 #include "lib/sky.h"
 #include "shared/fen_render.h"
 
-static inline PathState emit_uniform(const global RenderParams* params, const Sky* sky, ulong path)
+typedef struct {
+    const global ulong* cdf;   /* 2 + sky cells entries */
+    const global uint* guide;
+    uint guide_shift;
+} SourceTable;
+
+static inline PathState emit_uniform(const global RenderParams* params, const Sky* sky,
+                                     const SourceTable* sources, ulong path)
 {
     PathState p;
     p.path_lo = (uint)path;
     p.path_hi = (uint)(path >> 32);
     p.depth = 0;
-    const RngBlock bits = rng_path_bits(params->seed, p.path_lo, p.path_hi, 0, FEN_RNG_EMIT_A);
-    const float4 ua = rng_to_floats(bits);
-    const float4 ub = rng_path(params->seed, p.path_lo, p.path_hi, 0, FEN_RNG_EMIT_B);
+    const RngBlock bits = rng_path_bits(params->seed, p.path_lo, p.path_hi, 0, FEN_RNG_EMIT);
+    const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
+    const uint entry = cdf_search(sources->cdf, sources->guide, sources->guide_shift, bits.x);
     float3 dir;
-    if (bits.x < params->sun_threshold || params->sun_threshold == 0xFFFFFFFFu) {
+    if (entry == 0) {
         const float3 axis = params->sun_dir.xyz;
-        dir = params->sun_dir.w < 1.0f ? sample_cone(axis, params->sun_dir.w, ua.y, ua.z) : axis;
+        dir = params->sun_dir.w < 1.0f ? sample_cone(axis, params->sun_dir.w, u.z, u.w) : axis;
         p.beta = params->sun_weight;
         p.flags = FEN_PATH_ALIVE | FEN_PATH_FROM_SUN;
     } else {
         float w;
-        dir = -sky_sample(sky, bits.y, ua.z, ua.w, &w);
+        dir = -sky_sample(sky, entry - 1, u.z, u.w, &w);
         p.beta = (float4)(params->sky_weight.x * w);
         p.flags = FEN_PATH_ALIVE;
     }
     const float radius = params->sphere.w;
     float3 t1, t2;
     orthonormal_basis(dir, &t1, &t2);
-    const float2 d = sample_disk(ub.x, ub.y) * radius;
+    const float2 d = sample_disk(u.x, u.y) * radius;
     const float3 origin = params->sphere.xyz + d.x * t1 + d.y * t2 - dir * (1.01f * radius);
     p.org = (float4)(origin, 0.0f);
     p.dir = (float4)(dir, 0.0f);

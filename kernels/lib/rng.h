@@ -9,8 +9,7 @@
 
 #include "shared/fen_rng.h"
 
-#define FEN_RNG_EMIT_A 0u   /* source choice, direction */
-#define FEN_RNG_EMIT_B 1u   /* origin on the emission disk */
+#define FEN_RNG_EMIT 0u     /* source and sky cell (32 bits), direction and disk origin (4 x 24) */
 #define FEN_RNG_SCATTER 2u  /* glass choice, scattering direction, Russian roulette */
 #define FEN_RNG_CAMERA 3u   /* camera pass: position in the pixel */
 
@@ -28,6 +27,15 @@ static inline float4 rng_to_floats(RngBlock r)
 {
     return (float4)(fen_u32_to_unit(r.x), fen_u32_to_unit(r.y), fen_u32_to_unit(r.z),
                     fen_u32_to_unit(r.w));
+}
+
+/* Four floats in [0, 1) from 96 random bits, 24 each -- all a float in [0, 1) can hold, so one
+   Philox block serves a 32-bit discrete choice and four continuous dimensions. */
+static inline float4 rng_unit24x4(uint a, uint b, uint c)
+{
+    const float k = 1.0f / 16777216.0f;
+    return (float4)((float)(a >> 8), (float)(((a & 0xFFu) << 16) | (b >> 16)),
+                    (float)(((b & 0xFFFFu) << 8) | (c >> 24)), (float)(c & 0xFFFFFFu)) * k;
 }
 
 static inline float4 rng_floats(uint seed, uint stream, uint c0, uint c1, uint c2, uint purpose)

@@ -7,12 +7,12 @@
 
 #define FEN_PI 3.14159265358979323846f
 
-/* Uniform on the unit disk: density 1/pi. */
+/* Uniform on the unit disk: density 1/pi. (sinpi/cospi: their argument reduction is exact and
+   cheap, where PoCL's sin/cos of angles beyond pi/4 take a slow path -- 7 % of a render.) */
 static inline float2 sample_disk(float u1, float u2)
 {
     const float r = sqrt(u1);
-    const float phi = 2.0f * FEN_PI * u2;
-    return (float2)(r * cos(phi), r * sin(phi));
+    return (float2)(r * cospi(2.0f * u2), r * sinpi(2.0f * u2));
 }
 
 /* Two unit vectors completing n (unit) to an orthonormal basis (Duff et al., JCGT 2017). */
@@ -40,10 +40,9 @@ static inline float3 sample_cone(float3 axis, float cos_max, float u1, float u2)
 {
     const float c = 1.0f - u1 * (1.0f - cos_max);
     const float s = sqrt(fmax(0.0f, 1.0f - c * c));
-    const float phi = 2.0f * FEN_PI * u2;
     float3 t1, t2;
     orthonormal_basis(axis, &t1, &t2);
-    return normalize(s * cos(phi) * t1 + s * sin(phi) * t2 + c * axis);
+    return normalize(s * cospi(2.0f * u2) * t1 + s * sinpi(2.0f * u2) * t2 + c * axis);
 }
 
 /* x in [0,1) with density proportional to (1-x) a + x b, a, b >= 0, a + b > 0 (PBRT-v4's
@@ -62,18 +61,15 @@ static inline float sample_linear(float u, float a, float b)
    entries from cdf[0] = 0 to cdf[n] = 2^32: entry i is chosen with probability exactly
    (cdf[i+1] - cdf[i]) / 2^32 -- the number the host puts in the path weight -- and never when
    that is zero. (A float CDF searched with a 24-bit float realises other probabilities, up to
-   0.6 % off for small cells, and zero for tiny ones.) */
-static inline uint cdf_search(const global ulong* cdf, uint n, uint r)
+   0.6 % off for small cells, and zero for tiny ones.) The guide table (guide[b] = the entry that
+   holds r = b 2^shift) starts the search next to the answer: one or two steps instead of a
+   16-step binary search (measured: a sixth of the emission kernel). */
+static inline uint cdf_search(const global ulong* cdf, const global uint* guide, uint shift, uint r)
 {
-    uint lo = 0, hi = n; /* invariant: cdf[lo] <= r < cdf[hi] */
-    while (hi - lo > 1) {
-        const uint mid = (lo + hi) >> 1;
-        if (cdf[mid] <= (ulong)r)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return lo;
+    uint i = guide[r >> shift];
+    while (cdf[i + 1] <= (ulong)r)
+        ++i;
+    return i;
 }
 
 #endif /* FEN_SAMPLING_H */

@@ -34,6 +34,7 @@
     X(RenderParams, path_end) \
     X(RenderParams, seed)    \
     X(RenderParams, fixed_scale) \
-    X(RenderParams, batch)
+    X(RenderParams, batch)   \
+    X(RenderParams, source_guide_shift)
 
 #endif /* FEN_LAYOUT_H */

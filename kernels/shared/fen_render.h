@@ -86,13 +86,12 @@ FEN_ASSERT_SIZE(Connection, 48);
 typedef struct {
     fen_float4 sphere;       /* xyz: centre of the scene's bounding sphere; w: its radius (m) */
     fen_float4 sun_dir;      /* xyz: direction the sunlight travels (unit); w: cos(angular radius) */
-    fen_float4 sun_weight;   /* rgb: weight of a sun path, (flux of the sun through the disk) / P(sun) */
-    fen_float4 sky_weight;   /* x: pi R^2 / P(sky), times a cell's factor and sin(theta) */
+    fen_float4 sun_weight;   /* rgb: weight of a sun path, E pi R^2 / P(sun) */
+    fen_float4 sky_weight;   /* x: pi R^2, times a sky cell's factor and sin(theta) */
     fen_u64 path_end;        /* one past the last path index of this batch */
     fen_u32 seed;
     fen_u32 max_depth;
-    fen_u32 sun_threshold;   /* a path starts at the sun if its 32 random bits are below this
-                                (0xFFFFFFFF: always); P(sun) = threshold / 2^32 exactly */
+    fen_u32 source_guide_shift; /* the source table's guide has 2^(32 - shift) entries */
     fen_f32 fixed_scale;     /* pixel accumulators hold round(value * fixed_scale), 128-bit */
     fen_u32 sky_cells;       /* number of goniogram cells (0: no sky) */
     fen_u32 sky_theta_nodes;
@@ -100,8 +99,12 @@ typedef struct {
     fen_u32 pool_size;
     fen_u32 camera_spp;      /* camera-pass samples per pixel in this batch */
     fen_u32 batch;           /* batch number, for the camera pass's random numbers */
+    fen_u32 pad0;
+    fen_u32 pad3;
+    fen_u32 pad1;
+    fen_u32 pad2;
 } RenderParams;
-FEN_ASSERT_SIZE(RenderParams, 112);
+FEN_ASSERT_SIZE(RenderParams, 128);
 FEN_ASSERT_OFFSET(RenderParams, path_end, 64);
 FEN_ASSERT_OFFSET(RenderParams, seed, 72);
 FEN_ASSERT_OFFSET(RenderParams, batch, 108);

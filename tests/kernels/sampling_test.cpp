@@ -112,20 +112,18 @@ TEST(Sampling, LinearDensity)
 TEST(Sampling, IntegerCdfChoosesWithExactProbabilities)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
-    // Entries of very different sizes, some empty: empty ones must never be chosen.
-    const std::vector<double> w = {5, 0, 1, 0.001, 0, 30, 2, 2, 0, 7};
-    double total = 0.0;
-    for (double x : w)
-        total += x;
-    std::vector<std::uint64_t> cdf{0};
-    for (std::size_t i = 0; i < w.size(); ++i)
-        cdf.push_back(cdf.back() + static_cast<std::uint64_t>(std::llround(w[i] / total * 4294967296.0)));
-    cdf.back() = std::uint64_t{1} << 32;
+    // Entries of very different sizes, some empty: empty ones must never be chosen, tiny ones must
+    // keep a unit.
+    const std::vector<double> w = {5, 0, 1, 1e-12, 0, 30, 2, 2, 0, 7};
+    const IntegerCdf t = makeIntegerCdf(w);
+    EXPECT_EQ(t.cdf.back(), std::uint64_t{1} << 32);
+    EXPECT_GT(t.probability(3), 0.0) << "a tiny entry lost its light";
     const std::uint32_t n = 400000, cells = static_cast<std::uint32_t>(w.size());
     cl::Kernel k(ctx->program("test_probes.cl"), "cdf_probe");
-    cl::Buffer cb = ctx->buffer(CL_MEM_READ_ONLY, cdf.size() * 8, "cdf", cdf.data());
+    cl::Buffer cb = ctx->buffer(CL_MEM_READ_ONLY, t.cdf.size() * 8, "cdf", t.cdf.data());
+    cl::Buffer gb = ctx->buffer(CL_MEM_READ_ONLY, t.guide.size() * 4, "guide", t.guide.data());
     cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 4, "choices");
-    ocl::setKernelArgs(k, cb, cells, out, n, std::uint32_t{3});
+    ocl::setKernelArgs(k, cb, gb, t.guideShift, out, n, std::uint32_t{3});
     ocl::launch(*ctx, k, "cdf_probe", n);
     std::vector<std::uint32_t> got(n);
     ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, n * 4, got.data());
@@ -135,7 +133,7 @@ TEST(Sampling, IntegerCdfChoosesWithExactProbabilities)
         obs[c] += 1.0;
     }
     for (std::uint32_t i = 0; i < cells; ++i) {
-        exp[i] = static_cast<double>(cdf[i + 1] - cdf[i]) / 4294967296.0 * n;
+        exp[i] = t.probability(i) * n;
         if (w[i] == 0.0) {
             EXPECT_EQ(obs[i], 0.0) << "empty entry " << i << " chosen";
         }
@@ -148,17 +146,32 @@ struct SkyRun {
     std::vector<float> lum;
 };
 
-SkyRun runSky(ocl::Context& ctx, const SkyTables& t, std::uint32_t n)
+// The sky alone (no sun): cells by their integral of g sin(theta), as setupUniformEmission does.
+struct SkySampler {
+    SkyTables t;
+    IntegerCdf cdf;
+    std::vector<float> factor;
+    explicit SkySampler(const Goniogram& g) : t(makeSkyTables(g)), cdf(makeIntegerCdf(t.cellSin))
+    {
+        for (std::uint32_t k = 0; k < t.cells; ++k)
+            factor.push_back(static_cast<float>(t.cellFlat[k] / cdf.probability(k)));
+    }
+};
+
+SkyRun runSky(ocl::Context& ctx, const SkySampler& s, std::uint32_t n)
 {
+    const SkyTables& t = s.t;
     cl::Kernel k(ctx.program("test_probes.cl"), "sky_probe");
     cl::Buffer th = ctx.buffer(CL_MEM_READ_ONLY, t.theta.size() * 4, "theta", t.theta.data());
     cl::Buffer ph = ctx.buffer(CL_MEM_READ_ONLY, t.phi.size() * 4, "phi", t.phi.data());
     cl::Buffer va = ctx.buffer(CL_MEM_READ_ONLY, t.values.size() * 4, "values", t.values.data());
-    cl::Buffer cd = ctx.buffer(CL_MEM_READ_ONLY, t.cdf.size() * 8, "cdf", t.cdf.data());
-    cl::Buffer fa = ctx.buffer(CL_MEM_READ_ONLY, t.factor.size() * 4, "factor", t.factor.data());
+    cl::Buffer cd = ctx.buffer(CL_MEM_READ_ONLY, s.cdf.cdf.size() * 8, "cdf", s.cdf.cdf.data());
+    cl::Buffer gu = ctx.buffer(CL_MEM_READ_ONLY, s.cdf.guide.size() * 4, "guide", s.cdf.guide.data());
+    cl::Buffer fa = ctx.buffer(CL_MEM_READ_ONLY, s.factor.size() * 4, "factor", s.factor.data());
     cl::Buffer out = ctx.buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "dirs");
     cl::Buffer lum = ctx.buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 4, "lum");
-    ocl::setKernelArgs(k, th, ph, va, cd, fa, t.thetaNodes, t.phiNodes, out, lum, n, std::uint32_t{5});
+    ocl::setKernelArgs(k, th, ph, va, cd, gu, s.cdf.guideShift, fa, t.thetaNodes, t.phiNodes, out,
+                       lum, n, std::uint32_t{5});
     ocl::launch(ctx, k, "sky_probe", n);
     SkyRun r;
     r.dirWeight.resize(n);
@@ -186,9 +199,10 @@ TEST(Sampling, SkyDirectionsFollowTheGoniogramCellByCell)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     const Goniogram g = testSky();
-    const SkyTables t = makeSkyTables(g);
+    const SkySampler sampler(g);
+    const SkyTables& t = sampler.t;
     const std::uint32_t n = 400000;
-    const SkyRun r = runSky(*ctx, t, n);
+    const SkyRun r = runSky(*ctx, sampler, n);
     // Bins: each cell split 2 x 2; the expected mass of a sub-rectangle is the cell's probability
     // times the bilinear function's share there (exact: bilinear integrals).
     const std::size_t nt = t.thetaNodes, np = t.phiNodes;
@@ -208,7 +222,7 @@ TEST(Sampling, SkyDirectionsFollowTheGoniogramCellByCell)
     for (std::size_t i = 0; i + 1 < nt; ++i)
         for (std::size_t j = 0; j + 1 < np; ++j) {
             const std::size_t k = i * (np - 1) + j;
-            const double pk = static_cast<double>(t.cdf[k + 1] - t.cdf[k]) / 4294967296.0;
+            const double pk = sampler.cdf.probability(k);
             const double g00 = g.value(i, j), g01 = g.value(i, j + 1), g10 = g.value(i + 1, j),
                          g11 = g.value(i + 1, j + 1);
             // integral of the bilinear over [a0,a1] x [b0,b1] in unit cell coordinates
@@ -240,8 +254,7 @@ TEST(Sampling, SkyWeightsIntegrateTheSky)
     // E[w] = ∫ g dω and E[w cos θ] = ∫ g cos θ dω (horizontal illuminance): the path weights are
     // g/p for the procedure's exact density. 4 sigma of the sample standard error.
     for (const Goniogram& g : {testSky(), uniformSky(1234.0)}) {
-        const SkyTables t = makeSkyTables(g);
-        const SkyRun r = runSky(*ctx, t, 400000);
+        const SkyRun r = runSky(*ctx, SkySampler(g), 400000);
         std::vector<double> w, wc;
         for (const auto& s : r.dirWeight) {
             w.push_back(s.s[3]);
