@@ -22,7 +22,7 @@
 /* Camera samples of one pixel; returns the rays traced. */
 static inline uint camera_pixel(uint pixel, global const RenderParams* params, global const DevCamera* cam,
                                 global const BvhNode* nodes, global const TriPacket4* packets,
-                                global const ShadeTri* tris, global const DevMaterial* materials,
+                                global const uint* prim_material, global const DevMaterial* materials,
                                 global const float* sky_theta, global const float* sky_phi,
                                 global const float* sky_values, global float4* out)
 {
@@ -44,20 +44,23 @@ static inline uint camera_pixel(uint pixel, global const RenderParams* params, g
         float3 weight = (float3)(1.0f);
         for (int k = 0; k < FEN_CAMERA_MAX_GLASS; ++k) {
             const RayPre r = ray_setup(org, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
-            const Hit h = bvh_intersect_closest(nodes, packets, &r);
+            uint packet_lane;
+            const Hit h = bvh_intersect_closest_at(nodes, packets, &r, &packet_lane);
             ++rays;
             if (h.prim == FEN_INVALID_ID) {
                 sum += weight * sky_eval(&sky, dir);
                 break;
             }
-            const global ShadeTri* tri = tris + h.prim;
-            const global DevMaterial* m = materials + as_uint(tri->p0.w);
+            const global DevMaterial* m = materials + prim_material[h.prim];
             if (!material_is_glass(m))
                 break;
-            const float3 ng = normalize(tri_normal(tris, h.prim));
+            const global TriPacket4* p = packets + (packet_lane >> 2);
+            const uint lane = packet_lane & 3u;
+            const float3 ng = packet_normal(p, lane);
             weight *= m->transmission.xyz * (1.0f - fresnel_dielectric(dot(dir, ng), m->transmission.w));
             float offset_m;
-            const float3 x = surface_point(tri->p0.xyz, tri->p1.xyz, tri->p2.xyz, h.u, h.v, &offset_m);
+            const float3 x = surface_point(packet_vertex(p, lane, 0), packet_vertex(p, lane, 1),
+                                           packet_vertex(p, lane, 2), h.u, h.v, &offset_m);
             org = offset_ray_origin(x, offset_m, ng, dir);
         }
     }
@@ -67,13 +70,13 @@ static inline uint camera_pixel(uint pixel, global const RenderParams* params, g
 
 kernel void camera_pass(global const RenderParams* params, global const DevCamera* cam,
                         global const BvhNode* nodes, global const TriPacket4* packets,
-                        global const ShadeTri* tris, global const DevMaterial* materials,
+                        global const uint* prim_material, global const DevMaterial* materials,
                         global const float* sky_theta, global const float* sky_phi,
                         global const float* sky_values, global float4* out,
                         volatile global ulong* counters)
 {
     local uint rays_in_group;
-    const uint rays = camera_pixel(get_global_id(0), params, cam, nodes, packets, tris, materials,
+    const uint rays = camera_pixel(get_global_id(0), params, cam, nodes, packets, prim_material, materials,
                                    sky_theta, sky_phi, sky_values, out);
     group_count_add(counters + FEN_CTR_CAMERA_RAYS, rays, &rays_in_group);
 }

@@ -13,7 +13,7 @@
 /* Traces connection i; returns 1 if there was one. */
 static inline uint connect_one(uint i, global const RenderParams* params,
                                global const Connection* connections, global const BvhNode* nodes,
-                               global const TriPacket4* packets, global const ShadeTri* tris,
+                               global const TriPacket4* packets, global const uint* prim_material,
                                global const DevMaterial* materials, volatile global ulong* accum,
                                volatile global ulong* counters)
 {
@@ -24,7 +24,7 @@ static inline uint connect_one(uint i, global const RenderParams* params,
     if (pixel == FEN_INVALID_ID)
         return 0;
     const RayPre r = ray_setup(c.org.xyz, c.to_cam.xyz, 0.0f, 1.0f, FEN_BVH_WIDTH);
-    const float3 trans = segment_transmittance(nodes, packets, tris, materials, &r,
+    const float3 trans = segment_transmittance(nodes, packets, prim_material, materials, &r,
                                                normalize(c.to_cam.xyz));
     if (trans.x > 0.0f || trans.y > 0.0f || trans.z > 0.0f)
         splat_rgb(accum, pixel, c.value.xyz * trans, params->fixed_scale, counters);
@@ -33,11 +33,11 @@ static inline uint connect_one(uint i, global const RenderParams* params,
 
 kernel void connect_paths(global const RenderParams* params, global const Connection* connections,
                           global const BvhNode* nodes, global const TriPacket4* packets,
-                          global const ShadeTri* tris, global const DevMaterial* materials,
+                          global const uint* prim_material, global const DevMaterial* materials,
                           volatile global ulong* accum, volatile global ulong* counters)
 {
     local uint traced_in_group;
-    const uint traced = connect_one(get_global_id(0), params, connections, nodes, packets, tris,
-                                    materials, accum, counters);
+    const uint traced = connect_one(get_global_id(0), params, connections, nodes, packets,
+                                    prim_material, materials, accum, counters);
     group_count_add(counters + FEN_CTR_SHADOW_RAYS, traced, &traced_in_group);
 }

@@ -24,7 +24,7 @@
 
 /* Shades slot i; returns 1 if its path goes on. */
 static inline uint shade_one(uint i, global const RenderParams* params, global PathState* paths,
-                             global const Hit* hits, global const ShadeTri* tris,
+                             global const SurfaceHit* hits, global const uint* prim_material,
                              global const DevMaterial* materials, global const DevCamera* cam,
                              global Connection* connections, volatile global ulong* counters)
 {
@@ -34,16 +34,16 @@ static inline uint shade_one(uint i, global const RenderParams* params, global P
     PathState p = paths[i];
     if (!(p.flags & FEN_PATH_ALIVE))
         return 0;
-    const Hit h = hits[i];
-    if (h.prim == FEN_INVALID_ID) {
+    const SurfaceHit h = hits[i];
+    const uint prim = as_uint(h.normal.w);
+    if (prim == FEN_INVALID_ID) {
         paths[i].flags = 0;
         return 0;
     }
-    const global ShadeTri* tri = tris + h.prim;
-    const global DevMaterial* m = materials + as_uint(tri->p0.w);
-    const float3 ng = normalize(tri_normal(tris, h.prim));
-    float offset_m;
-    const float3 x = surface_point(tri->p0.xyz, tri->p1.xyz, tri->p2.xyz, h.u, h.v, &offset_m);
+    const global DevMaterial* m = materials + prim_material[prim];
+    const float3 ng = h.normal.xyz;
+    const float offset_m = h.pos.w;
+    const float3 x = h.pos.xyz;
     const float3 dir = p.dir.xyz;
     const float4 u = rng_path(params->seed, p.path_lo, p.path_hi, p.depth + 1, FEN_RNG_SCATTER);
     float3 next;
@@ -104,12 +104,12 @@ static inline uint shade_one(uint i, global const RenderParams* params, global P
 }
 
 kernel void shade_paths(global const RenderParams* params, global PathState* paths,
-                        global const Hit* hits, global const ShadeTri* tris,
+                        global const SurfaceHit* hits, global const uint* prim_material,
                         global const DevMaterial* materials, global const DevCamera* cam,
                         global Connection* connections, volatile global ulong* counters)
 {
     local uint alive_in_group;
-    const uint alive = shade_one(get_global_id(0), params, paths, hits, tris, materials, cam,
-                                 connections, counters);
+    const uint alive = shade_one(get_global_id(0), params, paths, hits, prim_material, materials,
+                                 cam, connections, counters);
     group_count_add(counters + FEN_CTR_ALIVE, alive, &alive_in_group);
 }

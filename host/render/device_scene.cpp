@@ -33,19 +33,12 @@ DeviceScene::DeviceScene(ocl::Context& ctx, const Scene& scene, int bvhWidth)
         d.transmission = {m.transmission.r, m.transmission.g, m.transmission.b, m.ior};
         mats.push_back(d);
     }
-    std::vector<dev::ShadeTri> tris(scene.triangles.size());
-    for (std::size_t i = 0; i < tris.size(); ++i) {
-        const Triangle& t = scene.triangles[i];
-        const std::uint32_t mat = scene.triangleMaterial[i];
-        hasGlass_ = hasGlass_ || scene.materials[mat].glass;
-        tris[i].p0 = {t.p0.x, t.p0.y, t.p0.z, asFloat(mat)};
-        tris[i].p1 = {t.p1.x, t.p1.y, t.p1.z, asFloat(scene.triangleNode[i])};
-        tris[i].p2 = {t.p2.x, t.p2.y, t.p2.z, 0.0f};
-    }
-    tris_ = ctx.buffer(CL_MEM_READ_ONLY, tris.size() * sizeof(dev::ShadeTri), "shading triangles",
-                       tris.data());
+    for (const std::uint32_t m : scene.triangleMaterial)
+        hasGlass_ = hasGlass_ || scene.materials[m].glass;
     materials_ = ctx.buffer(CL_MEM_READ_ONLY, mats.size() * sizeof(dev::DevMaterial), "materials",
                             mats.data());
+    primMaterial_ = ctx.buffer(CL_MEM_READ_ONLY, scene.triangleMaterial.size() * 4,
+                               "material per primitive", scene.triangleMaterial.data());
 }
 
 std::vector<std::string> DeviceScene::defines() const

@@ -60,7 +60,7 @@ struct Renderer::Impl {
           sky(makeSkyTables(g)), emission(setupUniformEmission(s, sky)),
           camera(makeDevCamera(cam, w, h))
     {
-        // CPU: a pool whose path states, hits and connections (128 B a slot) fit in the last-level
+        // CPU: a pool whose path states, hits and connections (144 B a slot) fit in the last-level
         // cache -- every stage streams through all of it (measured on the default room: 2^16
         // slots 2.7 s, 2^19 slots 3.6 s). GPU: enough slots to fill the device.
         pool = st.poolSize > 0 ? st.poolSize : (c.info().isGpu() ? (1u << 21) : (1u << 16));
@@ -76,7 +76,7 @@ struct Renderer::Impl {
         paramsBuf = c.buffer(CL_MEM_READ_ONLY, sizeof params, "render parameters");
         counters = c.buffer(CL_MEM_READ_WRITE, FEN_CTR_COUNT * 8, "counters");
         paths = c.buffer(CL_MEM_READ_WRITE, std::size_t{pool} * sizeof(dev::PathState), "path pool");
-        hits = c.buffer(CL_MEM_READ_WRITE, std::size_t{pool} * sizeof(dev::Hit), "hits");
+        hits = c.buffer(CL_MEM_READ_WRITE, std::size_t{pool} * sizeof(dev::SurfaceHit), "hits");
         connections = c.buffer(CL_MEM_READ_WRITE, std::size_t{pool} * sizeof(dev::Connection),
                                "camera connections");
         const std::size_t px = static_cast<std::size_t>(w) * h;
@@ -104,11 +104,11 @@ struct Renderer::Impl {
         ocl::setKernelArgs(emit, paramsBuf, counters, paths, skyTheta, skyPhi, skyValues, skyFactor,
                            sourceCdf, sourceGuide);
         ocl::setKernelArgs(intersect, paths, hits, pool, b.nodes(), b.packets());
-        ocl::setKernelArgs(shade, paramsBuf, paths, hits, scene.tris(), scene.materials(), cameraBuf,
-                           connections, counters);
-        ocl::setKernelArgs(connect, paramsBuf, connections, b.nodes(), b.packets(), scene.tris(),
+        ocl::setKernelArgs(shade, paramsBuf, paths, hits, scene.primMaterial(), scene.materials(),
+                           cameraBuf, connections, counters);
+        ocl::setKernelArgs(connect, paramsBuf, connections, b.nodes(), b.packets(), scene.primMaterial(),
                            scene.materials(), accum, counters);
-        ocl::setKernelArgs(cameraPass, paramsBuf, cameraBuf, b.nodes(), b.packets(), scene.tris(),
+        ocl::setKernelArgs(cameraPass, paramsBuf, cameraBuf, b.nodes(), b.packets(), scene.primMaterial(),
                            scene.materials(), skyTheta, skyPhi, skyValues, cameraOut, counters);
         warmUp();
         kernelBuildSeconds = since(t0);
@@ -146,10 +146,10 @@ struct Renderer::Impl {
             eta = std::max(0.0, budgetSeconds - t);
         else if (rate > 0.0)
             eta = (pathsTotal - pathsDone) / rate;
-        std::fprintf(stderr, "\rpaths %s/%s  %.2f Mpaths/s  %.2f Mrays/s  %.0f s left   ",
-                     millions(static_cast<double>(pathsDone)).c_str(),
-                     budgetSeconds > 0.0 ? "?" : millions(static_cast<double>(pathsTotal)).c_str(),
-                     rate * 1e-6, t > 0.0 ? raysDone / t * 1e-6 : 0.0, eta);
+        const std::string done = millions(static_cast<double>(pathsDone));
+        const std::string of = budgetSeconds > 0.0 ? "" : "/" + millions(static_cast<double>(pathsTotal));
+        std::fprintf(stderr, "\rpaths %s%s  %.2f Mpaths/s  %.2f Mrays/s  %.0f s left   ", done.c_str(),
+                     of.c_str(), rate * 1e-6, t > 0.0 ? raysDone / t * 1e-6 : 0.0, eta);
         std::fflush(stderr);
     }
 
@@ -235,15 +235,26 @@ struct Renderer::Impl {
             perBatch = std::max<std::uint64_t>(1, settings.paths / static_cast<std::uint64_t>(batches));
             pathsTotal = perBatch * static_cast<std::uint64_t>(batches);
         } else {
-            // Calibration: a batch of a few pool-fulls, not counted, gives the path rate.
+            // Calibration, not counted: batches doubling from four pool-fulls until one lasts
+            // min(1 s, 2 % of the budget), long enough to measure the path rate with the
+            // per-batch overheads in it.
             budgetSeconds = settings.timeSeconds;
             RenderResult scratch;
-            const std::uint64_t cal = std::uint64_t{pool} * 4;
-            const auto t0 = Clock::now();
-            runBatch(base, cal, 0xFFFFFFFFu, scratch);
-            r.calibrationSeconds = since(t0);
-            base += cal;
-            const double rate = cal / std::max(r.calibrationSeconds, 1e-6);
+            std::uint64_t cal = std::uint64_t{pool} * 4;
+            const double enough = std::min(1.0, 0.02 * settings.timeSeconds);
+            const auto c0 = Clock::now();
+            double last = 0.0;
+            for (;;) {
+                const auto t0 = Clock::now();
+                runBatch(base, cal, 0xFFFFFFFFu, scratch);
+                last = since(t0);
+                base += cal;
+                if (last >= enough || since(c0) >= 0.1 * settings.timeSeconds)
+                    break;
+                cal *= 2;
+            }
+            r.calibrationSeconds = since(c0);
+            const double rate = cal / std::max(last, 1e-6);
             const double left = std::max(0.0, settings.timeSeconds - r.calibrationSeconds);
             perBatch = std::max<std::uint64_t>(
                 pool, static_cast<std::uint64_t>(rate * left / batches));

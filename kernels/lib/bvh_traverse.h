@@ -86,9 +86,12 @@ static inline uint bvh_wide_test(const global BvhNode* n, const RayPre* r, float
     return BVH_LANE_BITS(m);
 }
 
-/* Closest hit along the ray, or hit.prim == FEN_INVALID_ID. */
-static inline Hit bvh_intersect_closest(const global BvhNode* nodes,
-                                        const global TriPacket4* packets, const RayPre* r)
+/* Closest hit along the ray, or hit.prim == FEN_INVALID_ID. *packet_lane = packet index * 4 + lane
+   of the hit, so a caller can read the triangle's vertices from the packet it just tested (in
+   cache) instead of a per-primitive array (a cache miss). */
+static inline Hit bvh_intersect_closest_at(const global BvhNode* nodes,
+                                           const global TriPacket4* packets, const RayPre* r,
+                                           uint* packet_lane)
 {
     Hit hit;
     hit.t = r->tmax;
@@ -170,6 +173,7 @@ static inline Hit bvh_intersect_closest(const global BvhNode* nodes,
                 hit.u = lane == 0 ? b1.s0 : (lane == 1 ? b1.s1 : (lane == 2 ? b1.s2 : b1.s3));
                 hit.v = lane == 0 ? b2.s0 : (lane == 1 ? b2.s1 : (lane == 2 ? b2.s2 : b2.s3));
                 hit.prim = p->prim[lane];
+                *packet_lane = ((cur & ~FEN_LEAF_BIT) << 2) | (uint)lane;
             }
         }
         /* pop the nearest pending subtree that can still hold a closer hit */
@@ -183,6 +187,13 @@ static inline Hit bvh_intersect_closest(const global BvhNode* nodes,
             }
         }
     }
+}
+
+static inline Hit bvh_intersect_closest(const global BvhNode* nodes,
+                                        const global TriPacket4* packets, const RayPre* r)
+{
+    uint packet_lane;
+    return bvh_intersect_closest_at(nodes, packets, r, &packet_lane);
 }
 
 /* Is anything hit in (tmin, tmax)? Children are visited in any order: the first hit ends it. */

@@ -1,21 +1,25 @@
-/* scene_access.h — what a stage needs to know about the primitive a ray hit: its material and
- * geometric normal (ShadeTri, DevMaterial of shared/fen_render.h).
+/* scene_access.h — what a stage needs to know about a triangle it hit: its material (one uint per
+ * primitive, shared/fen_render.h) and its geometry, read from the BVH packet that was just tested
+ * (in cache) rather than from a separate per-primitive array.
  */
 #ifndef FEN_SCENE_ACCESS_H
 #define FEN_SCENE_ACCESS_H
 
+#include "shared/fen_bvh.h"
 #include "shared/fen_render.h"
 
-static inline uint tri_material(const global ShadeTri* tris, uint prim)
+/* Vertex k (0..2) of lane `lane` of a packet. */
+static inline float3 packet_vertex(const global TriPacket4* p, uint lane, int k)
 {
-    return as_uint(tris[prim].p0.w);
+    const global float* v = p->v + 12 * k;
+    return (float3)(v[lane], v[4 + lane], v[8 + lane]);
 }
 
-/* Geometric normal, not normalised (its length is twice the triangle's area). */
-static inline float3 tri_normal(const global ShadeTri* tris, uint prim)
+/* Unit geometric normal of lane `lane`. */
+static inline float3 packet_normal(const global TriPacket4* p, uint lane)
 {
-    const float3 p0 = tris[prim].p0.xyz;
-    return cross(tris[prim].p1.xyz - p0, tris[prim].p2.xyz - p0);
+    const float3 p0 = packet_vertex(p, lane, 0);
+    return normalize(cross(packet_vertex(p, lane, 1) - p0, packet_vertex(p, lane, 2) - p0));
 }
 
 static inline int material_is_glass(const global DevMaterial* m)

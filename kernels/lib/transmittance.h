@@ -15,7 +15,7 @@
 
 static inline float3 segment_transmittance(const global BvhNode* nodes,
                                            const global TriPacket4* packets,
-                                           const global ShadeTri* tris,
+                                           const global uint* prim_material,
                                            const global DevMaterial* materials, const RayPre* r,
                                            float3 dir_unit)
 {
@@ -55,10 +55,10 @@ static inline float3 segment_transmittance(const global BvhNode* nodes,
                 last = prim;
                 if (!(tv[lane] < INFINITY))
                     continue;
-                const global DevMaterial* m = materials + tri_material(tris, prim);
+                const global DevMaterial* m = materials + prim_material[prim];
                 if (!material_is_glass(m))
                     return (float3)(0.0f);
-                const float cos_i = dot(normalize(tri_normal(tris, prim)), dir_unit);
+                const float cos_i = dot(packet_normal(p, (uint)lane), dir_unit);
                 trans *= m->transmission.xyz * (1.0f - fresnel_dielectric(cos_i, m->transmission.w));
             }
         }

@@ -23,9 +23,9 @@
     X(TriPacket4, v)         \
     X(TriPacket4, prim)      \
     X(DevMaterial, transmission) \
-    X(ShadeTri, p2)          \
     X(DevCamera, up)         \
     X(DevCamera, width)      \
+    X(SurfaceHit, normal)    \
     X(PathState, beta)       \
     X(PathState, path_lo)    \
     X(PathState, flags)      \

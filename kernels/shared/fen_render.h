@@ -41,14 +41,6 @@ typedef struct {
 FEN_ASSERT_SIZE(DevMaterial, 32);
 FEN_ASSERT_OFFSET(DevMaterial, transmission, 16);
 
-/* A triangle for shading, indexed by primitive id (the BVH packets hold copies for traversal). */
-typedef struct {
-    fen_float4 p0;  /* w: as_uint material index */
-    fen_float4 p1;  /* w: as_uint glTF node index */
-    fen_float4 p2;  /* w: unused */
-} ShadeTri;
-FEN_ASSERT_SIZE(ShadeTri, 48);
-
 /* Pinhole camera, box pixel filter. Image plane at unit distance along `forward`. */
 typedef struct {
     fen_float4 position;  /* xyz (m) */
@@ -62,6 +54,13 @@ typedef struct {
 } DevCamera;
 FEN_ASSERT_SIZE(DevCamera, 80);
 FEN_ASSERT_OFFSET(DevCamera, width, 64);
+
+/* What intersect.cl tells shade.cl about a path's next surface. */
+typedef struct {
+    fen_float4 pos;     /* xyz: hit point (m); w: how far a ray leaving it must start off the surface */
+    fen_float4 normal;  /* xyz: unit geometric normal; w: as_uint primitive, FEN_INVALID_ID = miss */
+} SurfaceHit;
+FEN_ASSERT_SIZE(SurfaceHit, 32);
 
 typedef struct {
     fen_float4 org;   /* xyz: ray origin (m) */

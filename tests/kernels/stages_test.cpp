@@ -58,7 +58,7 @@ struct Stages {
         p.fixed_scale = fixedScale;
         cl::Buffer params = ctx.buffer(CL_MEM_READ_ONLY, sizeof p, "params", &p);
         cl::Buffer paths = ctx.buffer(CL_MEM_READ_WRITE, n * sizeof(dev::PathState), "paths", in.data());
-        cl::Buffer hits = ctx.buffer(CL_MEM_READ_WRITE, n * sizeof(dev::Hit), "hits");
+        cl::Buffer hits = ctx.buffer(CL_MEM_READ_WRITE, n * sizeof(dev::SurfaceHit), "hits");
         cl::Buffer conns = ctx.buffer(CL_MEM_READ_WRITE, n * sizeof(dev::Connection), "connections");
         cl::Buffer camBuf = ctx.buffer(CL_MEM_READ_ONLY, sizeof cam, "camera", &cam);
         std::vector<std::uint64_t> zeros(FEN_CTR_COUNT, 0), accZero(std::size_t(width) * height * 6, 0);
@@ -69,8 +69,9 @@ struct Stages {
         cl::Kernel shade(ctx.program("shade.cl", defs), "shade_paths");
         cl::Kernel connect(ctx.program("connect.cl", defs), "connect_paths");
         ocl::setKernelArgs(isect, paths, hits, n, ds.bvh().nodes(), ds.bvh().packets());
-        ocl::setKernelArgs(shade, params, paths, hits, ds.tris(), ds.materials(), camBuf, conns, counters);
-        ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.tris(),
+        ocl::setKernelArgs(shade, params, paths, hits, ds.primMaterial(), ds.materials(), camBuf, conns,
+                           counters);
+        ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.primMaterial(),
                            ds.materials(), accum, counters);
         ocl::launch(ctx, isect, "intersect_paths", n);
         ocl::launch(ctx, shade, "shade_paths", n);
