@@ -3,6 +3,7 @@
 #include "render/render_cmd.h"
 
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -30,6 +31,25 @@ std::string withExtension(const std::string& exrPath, const std::string& ext)
     return exrPath.substr(0, exrPath.size() - 4) + ext;
 }
 
+// Creates the output's folder and proves it writable before a long render, not after it.
+void prepareOutput(const std::string& exrPath)
+{
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(exrPath).parent_path();
+    std::error_code ec;
+    if (!dir.empty())
+        fs::create_directories(dir, ec);
+    if (ec)
+        throw Error(cat("--out ", exrPath, ": cannot create folder ", dir.string(), ": ", ec.message()));
+    const std::string probe = exrPath + ".writable";
+    {
+        std::ofstream f(probe);
+        if (!f)
+            throw Error(cat("--out ", exrPath, ": cannot write there"));
+    }
+    fs::remove(probe, ec);
+}
+
 }  // namespace
 
 int runRender(const RenderOptions& opt)
@@ -43,6 +63,7 @@ int runRender(const RenderOptions& opt)
         throw Error("give either --paths or --time, not both");
     if (opt.timeSeconds < 0.0 || (opt.timeSeconds == 0.0 && opt.paths == 0))
         throw Error("--paths must be positive, or --time a positive number of seconds");
+    prepareOutput(opt.outPath);
 
     const Scene scene = loadGltf(opt.scenePath);
     for (const auto& w : scene.warnings)

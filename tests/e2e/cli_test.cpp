@@ -128,11 +128,12 @@ TEST(CliRender, WritesExrPngAndJson)
 {
     const std::string dir = test::tempDir("cli-render");
     const std::string scene = plateScene().write(dir + "/plate.gltf");
-    const CliRun r = run("render " + scene + " --out " + dir + "/out.exr --paths 200000 --width 40 --no-progress");
+    // The output folder does not exist yet: it is created (a fresh clone has no out/).
+    const CliRun r = run("render " + scene + " --out " + dir + "/new/out.exr --paths 200000 --width 40 --no-progress");
     ASSERT_EQ(r.status, 0) << r.err;
-    for (const char* f : {"/out.exr", "/out.png", "/out.json"})
+    for (const char* f : {"/new/out.exr", "/new/out.png", "/new/out.json"})
         EXPECT_FALSE(slurp(dir + f).empty()) << f;
-    const auto j = nlohmann::json::parse(slurp(dir + "/out.json"));
+    const auto j = nlohmann::json::parse(slurp(dir + "/new/out.json"));
     EXPECT_EQ(j["width"], 40);
     EXPECT_EQ(j["height"], 30);  // 4:3 when the camera gives no aspect ratio
     EXPECT_EQ(j["counters"]["bad_contributions"], 0);
@@ -143,7 +144,7 @@ TEST(CliRender, WritesExrPngAndJson)
         EXPECT_TRUE(j.contains(k)) << k;
     // --reference: the image against itself has zero error.
     const CliRun r2 = run("render " + scene + " --out " + dir + "/again.exr --paths 200000 --width 40 "
-                          "--no-progress --reference " + dir + "/out.exr --roi 5,5,30,25");
+                          "--no-progress --reference " + dir + "/new/out.exr --roi 5,5,30,25");
     ASSERT_EQ(r2.status, 0) << r2.err;
     const auto j2 = nlohmann::json::parse(slurp(dir + "/again.json"));
     EXPECT_EQ(j2["rmse_cd_m2"].get<double>(), 0.0);
@@ -200,6 +201,7 @@ TEST(CliRender, BadInputIsOneLineNamingTheProblem)
                 1, "/no/ref.exr");
     expectError(run("render " + good + out + " --width -3"), 1, "--width");
     expectError(run("render " + good + out + " --method portal"), 1, "--method");
+    expectError(run("render " + good + " --out /proc/no/such/o.exr --paths 10 --no-progress"), 1, "/proc/no/such");
 }
 
 }  // namespace
