@@ -99,7 +99,12 @@ int main(int argc, char** argv)
     renderCmd->add_option("--max-bounces", render.maxBounces, "Surface interactions per path (default 64)");
     renderCmd->add_option("--roi", render.roi, "Region x0,y0,x1,y1 for the statistics (default: whole image)");
     renderCmd->add_option("--reference", render.referencePath, "Reference EXR: report RMSE and relative MSE");
-    renderCmd->add_option("--method", render.method, "Emission strategy: uniform");
+    renderCmd->add_option("--method", render.method, "Emission strategy: uniform (default) or portal");
+    renderCmd->add_option("--portals", render.portals,
+                          "Portal nodes NAME,NAME replacing the scene's extras.portal marking");
+    renderCmd->add_option("--portal-overlap", render.portalOverlap,
+                          "Where portals overlap along a ray: reject (default) or weight; none is "
+                          "biased (for demonstration)");
     renderCmd->add_option("--layout", renderLayout, "BVH layout: bvh2, bvh4 or bvh8 (default: the device's)");
     renderCmd->add_option("--batches", render.batches, "Independent batches for the noise estimate (default 16)");
     renderCmd->add_option("--camera-spp", render.cameraSpp,

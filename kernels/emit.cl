@@ -21,7 +21,9 @@ kernel void emit_paths(global const RenderParams* params, volatile global ulong*
     const uint i = get_global_id(0);
     const int dead = i < params->pool_size && !(paths[i].flags & FEN_PATH_ALIVE);
     const ulong path = group_ticket(counters + FEN_CTR_NEXT_PATH, dead, &group_count, &group_base);
-    if (!dead || path >= params->path_end)
+    const int emit = dead && path < params->path_end;
+    group_count_add(counters + FEN_CTR_EMITTED, (uint)emit, &group_count);
+    if (!emit)
         return;
     Sky sky;
     sky.theta = sky_theta;

@@ -122,3 +122,4 @@ kernel void fresnel_probe(global const float* cos_i, global float* out, uint n, 
     if (i < n)
         out[i] = fresnel_dielectric(cos_i[i], eta);
 }
+

@@ -224,10 +224,70 @@ def room_scene(path):
                    "sun_altitude_deg": 35.0, "sun_azimuth_deg": 150.0})
 
 
+def frame_x(x0, x1, y0, y1, z, w):
+    """The frame of an opening [x0,x1] x [y0,y1] in the plane z: strips of width w around it."""
+    return (rect_x(x0 - w, x1 + w, y0 - w, y0, z) + rect_x(x0 - w, x1 + w, y1, y1 + w, z) +
+            rect_x(x0 - w, x0, y0, y1, z) + rect_x(x1, x1 + w, y0, y1, z))
+
+
+def inner_room_scene(path):
+    """scenes/inner_room.gltf — after the paper's Fig. 2: an inner room lit only through the gap
+    under its closed door, from an outer room with a large window and an open door.
+
+    Outer room x in [0, 6], z in [0, 5] (south), 3 m high: a 3.5 x 1.8 m glazed window in its
+    south wall (node `window`, extras.portal = true) and an open 1 x 2.1 m doorway in its east
+    wall, marked by its frame (node `door_frame`, extras.portal = "hull": fenestra emits through
+    the frame's convex hull, the doorway). Inner room x in [0, 6], z in [-4, 0], no window; the
+    partition wall at z = 0 has a closed door (x in [3.5, 4.4]) with a 5 cm gap under it. The
+    gap's opening is node `gap`: a surface of a fully transparent material (transmission 1,
+    IOR 1: nothing reflects, everything passes), unmarked, so `--portals gap` reproduces the
+    paper's wrong choice. No ground outside: all light enters through the window and the door.
+    Sun at altitude 30 deg, azimuth 200 deg (south-south-west), 60 klux, CIE clear sky (type 12)
+    for it, zenith luminance 3000 cd/m^2. The camera stands in the inner room and looks to the
+    right of the door (west of it: the camera faces south).
+    """
+    g = Gltf("fenestra scripts/make_scenes.py")
+    X, Y, Zo, Zi = 6.0, 3.0, 5.0, -4.0
+    floor = g.material("floor", (0.3, 0.3, 0.3))
+    wall = g.material("wall", (0.7, 0.7, 0.7))
+    ceiling = g.material("ceiling", (0.8, 0.8, 0.8))
+    door = g.material("door", (0.5, 0.4, 0.3))
+    glass = g.material("glass", (1.0, 1.0, 1.0), transmission=0.9, ior=1.5)
+    opening = g.material("opening", (1.0, 1.0, 1.0), transmission=1.0, ior=1.0)
+    # window (south wall z = Zo) and outer doorway (east wall x = X)
+    wx0, wx1, wy0, wy1 = 1.0, 4.5, 0.8, 2.6
+    dz0, dz1, dy1 = 3.2, 4.2, 2.1
+    # inner door in the partition z = 0, its gap under it
+    ix0, ix1, iy1, gap = 3.5, 4.4, 2.1, 0.05
+    g.mesh_node("floor", rect_y(0, X, Zi, Zo, 0.0), floor)
+    g.mesh_node("ceiling", rect_y(0, X, Zi, Zo, Y), ceiling)
+    walls = (rect_x(0, X, 0, Y, Zi) +                                   # inner room, north
+             rect_z(Zi, Zo, 0, Y, 0.0) +                                # west (both rooms)
+             rect_z(Zi, 0, 0, Y, X) +                                   # inner room, east
+             rect_z(0, dz0, 0, Y, X) + rect_z(dz1, Zo, 0, Y, X) +       # outer room, east,
+             rect_z(dz0, dz1, dy1, Y, X) +                              #   around the doorway
+             wall_with_hole(0, X, 0, Y, Zo, wx0, wx1, wy0, wy1) +       # outer room, south
+             rect_x(0, ix0, 0, Y, 0.0) + rect_x(ix1, X, 0, Y, 0.0) +    # partition around the
+             rect_x(ix0, ix1, iy1, Y, 0.0))                             #   inner door
+    g.mesh_node("walls", walls, wall)
+    g.mesh_node("window", rect_x(wx0, wx1, wy0, wy1, Zo), glass, extras={"portal": True})
+    # the open doorway's frame: jambs and head, 5 cm, in the wall plane x = X
+    frame = (rect_z(dz0 - 0.05, dz0, 0, dy1, X) + rect_z(dz1, dz1 + 0.05, 0, dy1, X) +
+             rect_z(dz0 - 0.05, dz1 + 0.05, dy1, dy1 + 0.05, X))
+    g.mesh_node("door_frame", frame, wall, extras={"portal": "hull"})
+    g.mesh_node("inner_door", rect_x(ix0, ix1, gap, iy1, 0.0), door)
+    g.mesh_node("gap", rect_x(ix0, ix1, 0.0, gap, 0.0), opening)
+    g.sun("sun", 30.0, 200.0, 60000.0)
+    g.camera("camera", (5.4, 1.4, -3.0), (2.4, 0.3, -0.4), 55.0, 4.0 / 3.0)
+    g.write(path, {"type": "cie", "cie_type": 12, "zenith_luminance": 3000.0,
+                   "sun_altitude_deg": 30.0, "sun_azimuth_deg": 200.0})
+
+
 def main():
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
     os.makedirs(root, exist_ok=True)
     room_scene(os.path.join(root, "room.gltf"))
+    inner_room_scene(os.path.join(root, "inner_room.gltf"))
 
 
 if __name__ == "__main__":

@@ -6,15 +6,20 @@
 #pragma once
 
 #include <string>
+#include <type_traits>
 
 #include "cl/context.h"
 #include "util/error.h"
 
 namespace fen { namespace ocl {
 
+// Buffers must outlive the launch: clSetKernelArg does not retain memory objects, so a temporary
+// cl::Buffer would be freed before the kernel runs (seen as a PoCL crash) -- refused at compile time.
 template <class... Args>
-void setKernelArgs(cl::Kernel& kernel, const Args&... args)
+void setKernelArgs(cl::Kernel& kernel, Args&&... args)
 {
+    static_assert(((!std::is_same_v<std::decay_t<Args>, cl::Buffer> || std::is_lvalue_reference_v<Args>) && ...),
+                  "pass buffers that outlive the launch, not temporaries");
     const cl_uint expected = kernel.getInfo<CL_KERNEL_NUM_ARGS>();
     if (expected != sizeof...(Args))
         throw Error(cat("kernel ", kernel.getInfo<CL_KERNEL_FUNCTION_NAME>(), " takes ", expected,

@@ -57,8 +57,10 @@ int runRender(const RenderOptions& opt)
     const auto t0 = std::chrono::steady_clock::now();
     if (opt.outPath.size() < 5 || opt.outPath.substr(opt.outPath.size() - 4) != ".exr")
         throw Error(cat("--out '", opt.outPath, "' must name an .exr file"));
-    if (opt.method != "uniform")
-        throw Error(cat("--method '", opt.method, "' is not available (uniform)"));
+    const EmissionMethod method = parseEmissionMethod(opt.method);
+    const PortalOverlap overlap = parsePortalOverlap(opt.portalOverlap);
+    if (method != EmissionMethod::Portal && !opt.portals.empty())
+        throw Error("--portals applies to --method portal");
     if (opt.paths > 0 && opt.timeSeconds > 0.0)
         throw Error("give either --paths or --time, not both");
     if (opt.timeSeconds < 0.0 || (opt.timeSeconds == 0.0 && opt.paths == 0))
@@ -86,6 +88,9 @@ int runRender(const RenderOptions& opt)
 
     ocl::Context ctx(ocl::selectDevice(opt.device));
     RenderSettings settings;
+    settings.method = method;
+    settings.portals = opt.portals;
+    settings.overlap = overlap;
     settings.paths = opt.paths;
     settings.timeSeconds = opt.timeSeconds;
     settings.batches = opt.batches;
@@ -149,10 +154,19 @@ int runRender(const RenderOptions& opt)
         j["rmse_cd_m2"] = *st.rmse_cd_m2;
         j["rel_mse"] = *st.relMse;
     }
-    j["emission"] = {{"sun_flux_lm", r.emission.sunFlux},
-                     {"sky_flux_lm", r.emission.skyFlux},
-                     {"p_sun", r.emission.pSun},
-                     {"disk_radius_m", r.emission.sphereRadius_m}};
+    if (method == EmissionMethod::Portal)
+        j["emission"] = {{"portal_nodes", r.portalNodes},
+                         {"portal_triangles", r.portalTriangles},
+                         {"portal_plane_groups", r.portalGroups},
+                         {"portal_overlap", opt.portalOverlap},
+                         {"sun_flux_lm", r.portalSunFlux_lm},
+                         {"sky_flux_lm", r.portalSkyFlux_lm},
+                         {"precompute_seconds", r.portalPrecomputeSeconds}};
+    else
+        j["emission"] = {{"sun_flux_lm", r.emission.sunFlux},
+                         {"sky_flux_lm", r.emission.skyFlux},
+                         {"p_sun", r.emission.pSun},
+                         {"disk_radius_m", r.emission.sphereRadius_m}};
     j["counters"] = {{"bad_contributions", r.badContributions},
                      {"fixed_point_overflows", r.overflows},
                      {"max_bounce_cuts", r.maxBounceCuts}};

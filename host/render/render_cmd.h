@@ -19,6 +19,8 @@ struct RenderOptions {
     std::string roi;                // "x0,y0,x1,y1"
     std::string referencePath;
     std::string method = "uniform";
+    std::string portals;            // --portals NAME,NAME
+    std::string portalOverlap = "reject";
     int bvhWidth = 0;
     int batches = 16;
     int cameraSpp = 1;

@@ -32,6 +32,15 @@ std::string millions(double v)
 
 }  // namespace
 
+EmissionMethod parseEmissionMethod(const std::string& s)
+{
+    if (s == "uniform")
+        return EmissionMethod::Uniform;
+    if (s == "portal")
+        return EmissionMethod::Portal;
+    throw Error(cat("--method '", s, "': expected uniform or portal"));
+}
+
 struct Renderer::Impl {
     ocl::Context& ctx;
     RenderSettings settings;
@@ -39,12 +48,15 @@ struct Renderer::Impl {
     DeviceScene scene;
     SkyTables sky;
     EmissionSetup emission;
+    std::optional<PortalEmission> portal;
     dev::DevCamera camera;
     dev::RenderParams params{};
     std::uint32_t pool;
 
     cl::Buffer paramsBuf, counters, paths, hits, connections, accum, cameraOut, cameraBuf;
     cl::Buffer skyTheta, skyPhi, skyValues, skyFactor, sourceCdf, sourceGuide;
+    cl::Buffer portalGroups, portalRange, portalCdf, portalVertices;
+    std::unique_ptr<DeviceBvh> portalBvh;
     cl::Kernel emit, intersect, shade, connect, cameraPass;
     double kernelBuildSeconds = 0.0;
 
@@ -72,6 +84,19 @@ struct Renderer::Impl {
         params.sun_dir = {static_cast<float>(sd.x), static_cast<float>(sd.y), static_cast<float>(sd.z),
                           static_cast<float>(std::cos(s.sun.angularRadiusRad))};
         fillEmissionParams(emission, sky, params);
+        const IntegerCdf* sources = &emission.sources;
+        const std::vector<float>* factor = &emission.skyFactor;
+        if (st.method == EmissionMethod::Portal) {
+            portal = setupPortalEmission(s, sky, g, st.portals, scene.bvh().width());
+            sources = &portal->sources;
+            factor = &portal->skyFactor;
+            params.sun_weight = {static_cast<float>(portal->sunWeight.r),
+                                 static_cast<float>(portal->sunWeight.g),
+                                 static_cast<float>(portal->sunWeight.b), 0.0f};
+            params.source_guide_shift = portal->sources.guideShift;
+            params.portal_groups = static_cast<std::uint32_t>(portal->groups.size());
+            params.portal_overlap = static_cast<std::uint32_t>(st.overlap);
+        }
 
         paramsBuf = c.buffer(CL_MEM_READ_ONLY, sizeof params, "render parameters");
         counters = c.buffer(CL_MEM_READ_WRITE, FEN_CTR_COUNT * 8, "counters");
@@ -86,23 +111,40 @@ struct Renderer::Impl {
         skyTheta = c.buffer(CL_MEM_READ_ONLY, sky.theta.size() * 4, "sky nodes", sky.theta.data());
         skyPhi = c.buffer(CL_MEM_READ_ONLY, sky.phi.size() * 4, "sky nodes", sky.phi.data());
         skyValues = c.buffer(CL_MEM_READ_ONLY, sky.values.size() * 4, "sky luminances", sky.values.data());
-        skyFactor = c.buffer(CL_MEM_READ_ONLY, emission.skyFactor.size() * 4, "sky weights",
-                             emission.skyFactor.data());
-        sourceCdf = c.buffer(CL_MEM_READ_ONLY, emission.sources.cdf.size() * 8, "source table",
-                             emission.sources.cdf.data());
-        sourceGuide = c.buffer(CL_MEM_READ_ONLY, emission.sources.guide.size() * 4,
-                               "source guide table", emission.sources.guide.data());
+        skyFactor = c.buffer(CL_MEM_READ_ONLY, factor->size() * 4, "sky weights", factor->data());
+        sourceCdf = c.buffer(CL_MEM_READ_ONLY, sources->cdf.size() * 8, "source table",
+                             sources->cdf.data());
+        sourceGuide = c.buffer(CL_MEM_READ_ONLY, sources->guide.size() * 4, "source guide table",
+                               sources->guide.data());
 
         const auto t0 = Clock::now();
         const auto defs = scene.defines();
-        emit = cl::Kernel(c.program("emit.cl", defs), "emit_paths");
+        if (portal)
+            emit = cl::Kernel(c.program("emit_portal.cl", defs), "emit_portal_paths");
+        else
+            emit = cl::Kernel(c.program("emit.cl", defs), "emit_paths");
         intersect = cl::Kernel(c.program("intersect.cl", defs), "intersect_paths");
         shade = cl::Kernel(c.program("shade.cl", defs), "shade_paths");
         connect = cl::Kernel(c.program("connect.cl", defs), "connect_paths");
         cameraPass = cl::Kernel(c.program("camera_pass.cl", defs), "camera_pass");
         const DeviceBvh& b = scene.bvh();
-        ocl::setKernelArgs(emit, paramsBuf, counters, paths, skyTheta, skyPhi, skyValues, skyFactor,
-                           sourceCdf, sourceGuide);
+        if (portal) {
+            portalGroups = c.buffer(CL_MEM_READ_ONLY, portal->groups.size() * 16, "portal groups",
+                                    portal->groups.data());
+            portalRange = c.buffer(CL_MEM_READ_ONLY, portal->groupRange.size() * 4, "portal groups",
+                                   portal->groupRange.data());
+            portalCdf = c.buffer(CL_MEM_READ_ONLY, portal->triangleCdf.size() * 8,
+                                 "portal triangle table", portal->triangleCdf.data());
+            portalVertices = c.buffer(CL_MEM_READ_ONLY, portal->vertices.size() * 16,
+                                      "portal triangles", portal->vertices.data());
+            portalBvh = std::make_unique<DeviceBvh>(c, portal->bvh);
+            ocl::setKernelArgs(emit, paramsBuf, counters, paths, skyTheta, skyPhi, skyValues,
+                               skyFactor, sourceCdf, sourceGuide, portalGroups, portalRange,
+                               portalCdf, portalVertices, portalBvh->nodes(), portalBvh->packets());
+        } else {
+            ocl::setKernelArgs(emit, paramsBuf, counters, paths, skyTheta, skyPhi, skyValues,
+                               skyFactor, sourceCdf, sourceGuide);
+        }
         ocl::setKernelArgs(intersect, paths, hits, pool, b.nodes(), b.packets());
         ocl::setKernelArgs(shade, paramsBuf, paths, hits, scene.primMaterial(), scene.materials(),
                            cameraBuf, connections, counters);
@@ -172,7 +214,7 @@ struct Renderer::Impl {
         q.enqueueFillBuffer(accum, cl_ulong(0), 0, static_cast<std::size_t>(width) * height * 48);
 
         const std::uint64_t zero = 0;
-        std::uint64_t next = base, alive = 0;
+        std::uint64_t next = base, alive = 0, emittedBefore = 0;
         for (;;) {
             if (next < end)
                 ocl::launch(ctx, emit, "emit_paths", pool);
@@ -181,11 +223,13 @@ struct Renderer::Impl {
             ocl::launch(ctx, shade, "shade_paths", pool);
             ocl::launch(ctx, connect, "connect_paths", pool);
             q.enqueueReadBuffer(counters, CL_TRUE, 0, sizeof ctr, ctr);
-            const std::uint64_t emitted =
-                std::min<std::uint64_t>(ctr[FEN_CTR_NEXT_PATH], end) - std::min(next, end);
-            r.extensionRays += alive + emitted;
-            raysDone += alive + emitted;
-            pathsDone += emitted;
+            // Rays traced this iteration: the paths alive before it plus those that started in it
+            // (a rejected portal candidate spends its index but starts no path).
+            const std::uint64_t started = ctr[FEN_CTR_EMITTED] - emittedBefore;
+            emittedBefore = ctr[FEN_CTR_EMITTED];
+            r.extensionRays += alive + started;
+            raysDone += alive + started;
+            pathsDone += std::min<std::uint64_t>(ctr[FEN_CTR_NEXT_PATH], end) - std::min(next, end);
             alive = ctr[FEN_CTR_ALIVE];
             next = ctr[FEN_CTR_NEXT_PATH];
             progress(false);
@@ -225,6 +269,15 @@ struct Renderer::Impl {
         r.bvhWidth = scene.bvh().width();
         r.poolSize = pool;
         r.emission = emission;
+        r.method = settings.method;
+        if (portal) {
+            r.portalNodes = portal->portals.nodes;
+            r.portalTriangles = portal->portals.triangles.size();
+            r.portalGroups = portal->portals.groups.size();
+            r.portalSunFlux_lm = portal->sunFlux_lm;
+            r.portalSkyFlux_lm = portal->skyFlux_lm;
+            r.portalPrecomputeSeconds = portal->precomputeSeconds;
+        }
         const std::size_t px = static_cast<std::size_t>(width) * height;
         const int batches = std::max(2, settings.batches);
 

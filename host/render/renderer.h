@@ -16,6 +16,7 @@
 
 #include "cl/context.h"
 #include "io/image.h"
+#include "emission/portal_emission.h"
 #include "render/device_scene.h"
 #include "render/emission_setup.h"
 #include "render/image_stats.h"
@@ -24,7 +25,13 @@
 
 namespace fen {
 
+enum class EmissionMethod { Uniform, Portal };
+EmissionMethod parseEmissionMethod(const std::string& s);  // uniform | portal
+
 struct RenderSettings {
+    EmissionMethod method = EmissionMethod::Uniform;
+    std::string portals;         // --portals: node names replacing the scene's marking
+    PortalOverlap overlap = PortalOverlap::Reject;
     std::uint64_t paths = 0;     // total light paths; 0 = use timeSeconds
     double timeSeconds = 0.0;
     int batches = 16;            // independent batches (>= 2): the noise estimate's sample size
@@ -50,6 +57,11 @@ struct RenderResult {
     int bvhWidth = 0;
     std::uint32_t poolSize = 0;
     EmissionSetup emission;
+    EmissionMethod method = EmissionMethod::Uniform;
+    // portal strategy: the portal nodes, triangles, plane groups, flux through them, precompute
+    std::vector<std::string> portalNodes;
+    std::size_t portalTriangles = 0, portalGroups = 0;
+    double portalSunFlux_lm = 0.0, portalSkyFlux_lm = 0.0, portalPrecomputeSeconds = 0.0;
     std::map<std::string, ocl::KernelStats::Entry> kernels;
     // roiBatchMeans[k][b]: mean luminance of settings.rois[k] in batch b. Batches are independent,
     // so their spread gives the ROI mean's standard error (pixels within a batch are not).

@@ -232,4 +232,42 @@ static inline int bvh_intersect_any(const global BvhNode* nodes, const global Tr
     }
 }
 
+/* How many distinct triangles the ray crosses in (tmin, tmax): every leaf the ray reaches is
+   tested; a packet's repeated last triangle counts once. (Portal emission's N(x, v).) */
+static inline uint bvh_count_hits(const global BvhNode* nodes, const global TriPacket4* packets,
+                                  const RayPre* r)
+{
+    uint stack_ref[FEN_BVH_STACK_SIZE];
+    int sp = 0;
+    uint cur = 0, count = 0;
+    float tnear[FEN_BVH_WIDTH];
+    for (;;) {
+        if (!(cur & FEN_LEAF_BIT)) {
+            const global BvhNode* n = nodes + cur;
+            uint bits = bvh_wide_test(n, r, r->tmax, tnear);
+            if (bits != 0) {
+                int k = bvh_lowest_bit(bits);
+                bits &= bits - 1;
+                cur = n->child[k];
+                while (bits != 0) {
+                    k = bvh_lowest_bit(bits);
+                    bits &= bits - 1;
+                    stack_ref[sp++] = n->child[k];
+                }
+                continue;
+            }
+        } else {
+            float4 b1, b2;
+            const global TriPacket4* p = packets + (cur & ~FEN_LEAF_BIT);
+            const float4 t = tri_packet_intersect(p, r, r->tmax, &b1, &b2);
+            count += (t.s0 < INFINITY) + (t.s1 < INFINITY && p->prim[1] != p->prim[0]) +
+                     (t.s2 < INFINITY && p->prim[2] != p->prim[1]) +
+                     (t.s3 < INFINITY && p->prim[3] != p->prim[2]);
+        }
+        if (sp == 0)
+            return count;
+        cur = stack_ref[--sp];
+    }
+}
+
 #endif /* FEN_BVH_TRAVERSE_H */

@@ -10,6 +10,7 @@
 #include "shared/fen_rng.h"
 
 #define FEN_RNG_EMIT 0u     /* source and sky cell (32 bits), direction and disk origin (4 x 24) */
+#define FEN_RNG_EMIT_PORTAL 4u /* portal triangle (32 bits), point on it, overlap rejection */
 #define FEN_RNG_SCATTER 2u  /* glass choice, scattering direction, Russian roulette */
 #define FEN_RNG_CAMERA 3u   /* camera pass: position in the pixel */
 

@@ -30,7 +30,8 @@
 #define FEN_CTR_BAD_CONTRIBUTIONS 5 /* NaN/inf contributions dropped: must stay 0 */
 #define FEN_CTR_OVERFLOWS 6        /* contributions beyond the 128-bit range: must stay 0 */
 #define FEN_CTR_MAX_DEPTH 7        /* paths cut by --max-bounces (bias, reported) */
-#define FEN_CTR_COUNT 8
+#define FEN_CTR_EMITTED 8          /* paths that started (a rejected portal candidate does not) */
+#define FEN_CTR_COUNT 9
 
 FEN_NS_BEGIN
 
@@ -98,8 +99,8 @@ typedef struct {
     fen_u32 pool_size;
     fen_u32 camera_spp;      /* camera-pass samples per pixel in this batch */
     fen_u32 batch;           /* batch number, for the camera pass's random numbers */
-    fen_u32 pad0;
-    fen_u32 pad3;
+    fen_u32 portal_groups;   /* portal strategy: number of portal plane groups */
+    fen_u32 portal_overlap;  /* portal strategy: 0 reject, 1 weight by 1/N, 2 none (biased) */
     fen_u32 pad1;
     fen_u32 pad2;
 } RenderParams;

@@ -200,7 +200,11 @@ TEST(CliRender, BadInputIsOneLineNamingTheProblem)
     expectError(run("render " + good + " --out " + dir + "/o.exr --no-progress --reference /no/ref.exr --paths 10"),
                 1, "/no/ref.exr");
     expectError(run("render " + good + out + " --width -3"), 1, "--width");
-    expectError(run("render " + good + out + " --method portal"), 1, "--method");
+    expectError(run("render " + good + out + " --method sideways"), 1, "--method");
+    expectError(run("render " + good + out + " --method portal"), 1, "no portals");
+    expectError(run("render " + good + out + " --method portal --portals nope"), 1, "'nope'");
+    expectError(run("render " + good + out + " --portals plate"), 1, "--method portal");
+    expectError(run("render " + good + out + " --method portal --portal-overlap maybe"), 1, "--portal-overlap");
     expectError(run("render " + good + " --out /proc/no/such/o.exr --paths 10 --no-progress"), 1, "/proc/no/such");
 }
 

@@ -1,0 +1,52 @@
+// portal_emission.h — the host half of the `portal` strategy (DESIGN.md §3.2, the paper's
+// method 1): rays are emitted only through the user-marked portals.
+//
+// Per path (kernels/lib/emit_portal.h): one entry of a joint table picks the sun or a sky cell;
+// the direction v is the sun's, or sampled in the cell with density proportional to g (as in
+// `uniform`); a portal group is chosen with probability A_g |v.n_g| / W(v), W(v) = sum_g A_g
+// |v.n_g|, then a triangle by area, then x uniformly on it. Per unit of area orthogonal to v this
+// density is P(entry) q(v) / W(v) whichever triangle was chosen, so a ray crossing N(x, v) portal
+// triangles is generated N ways: the paper's fix rejects it with probability 1 - 1/N, the other
+// fix divides its weight by N (both unbiased; --portal-overlap). Weights: sun E W(v) / P(sun);
+// sky W(v) factor_k sin(theta), factor_k = B_k / P(entry k) (see lib/sky.h).
+// The table follows eqs. (1)-(2): the sun by E W(v_sun), cell k by sum_g A_g ∫_k |v.n_g| g dv,
+// which is A_g |F_k . n_g| (F_k = ∫_k v g dv) where the cell lies on one side of the plane, and a
+// midpoint sum where the plane cuts it. These set probabilities only; the weights use the
+// probabilities realised, so any error there costs variance, never bias.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bvh_flat.h"
+#include "emission/portals.h"
+#include "render/emission_setup.h"
+
+namespace fen {
+
+enum class PortalOverlap : std::uint32_t { Reject = 0, Weight = 1, None = 2 };
+PortalOverlap parsePortalOverlap(const std::string& s);  // reject | weight | none
+
+struct PortalEmission {
+    PortalSet portals;
+    IntegerCdf sources;             // entry 0: the sun; entry 1 + k: sky cell k
+    std::vector<float> skyFactor;   // per cell: B_k / P(entry 1 + k)
+    glm::dvec3 sunWeight{0.0};      // E_rgb / P(sun): the device multiplies by W(v)
+    double sunFlux_lm = 0.0;        // flux through the portals' projections (overlaps counted N times)
+    double skyFlux_lm = 0.0;
+    double pSun = 0.0;
+    double precomputeSeconds = 0.0;
+    // Device arrays (kernels/lib/emit_portal.h).
+    std::vector<dev::fen_float4> groups;  // xyz: unit normal; w: area (m^2)
+    std::vector<std::uint32_t> groupRange;  // per group: first triangle, count
+    std::vector<std::uint64_t> triangleCdf;  // group g: entries [first + g, first + g + count], 0..2^32
+    std::vector<dev::fen_float4> vertices;  // 3 per portal triangle
+    FlatBvh bvh;                            // the portal triangles alone, for N(x, v)
+};
+
+PortalEmission setupPortalEmission(const Scene& scene, const SkyTables& sky,
+                                   const std::optional<Goniogram>& goniogram,
+                                   const std::string& portalOverride, int bvhWidth);
+
+}  // namespace fen

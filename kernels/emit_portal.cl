@@ -1,0 +1,52 @@
+/* emit_portal.cl — wavefront stage 1 for the `portal` strategy: like emit.cl (one ticket per dead
+ * slot, per work-group), with paths from lib/emit_portal.h. A rejected candidate spends its path
+ * index and leaves the slot dead for this iteration.
+ * Build with -DFEN_BVH_WIDTH (the portals' BVH has the scene's layout).
+ */
+#include "lib/bvh_traverse.h"
+#include "lib/emit_portal.h"
+#include "lib/group_count.h"
+
+kernel void emit_portal_paths(global const RenderParams* params, volatile global ulong* counters,
+                              global PathState* paths, global const float* sky_theta,
+                              global const float* sky_phi, global const float* sky_values,
+                              global const float* sky_factor, global const ulong* source_cdf,
+                              global const uint* source_guide, global const float4* portal_groups,
+                              global const uint* portal_range, global const ulong* portal_cdf,
+                              global const float4* portal_vertices,
+                              global const BvhNode* portal_nodes,
+                              global const TriPacket4* portal_packets)
+{
+    local uint group_count;
+    local ulong group_base;
+    const uint i = get_global_id(0);
+    const int dead = i < params->pool_size && !(paths[i].flags & FEN_PATH_ALIVE);
+    const ulong path = group_ticket(counters + FEN_CTR_NEXT_PATH, dead, &group_count, &group_base);
+    int emitted = 0;
+    if (dead && path < params->path_end) {
+        Sky sky;
+        sky.theta = sky_theta;
+        sky.phi = sky_phi;
+        sky.values = sky_values;
+        sky.factor = sky_factor;
+        sky.nt = params->sky_theta_nodes;
+        sky.np = params->sky_phi_nodes;
+        SourceTable sources;
+        sources.cdf = source_cdf;
+        sources.guide = source_guide;
+        sources.guide_shift = params->source_guide_shift;
+        Portals portals;
+        portals.groups = portal_groups;
+        portals.range = portal_range;
+        portals.triangle_cdf = portal_cdf;
+        portals.vertices = portal_vertices;
+        portals.nodes = portal_nodes;
+        portals.packets = portal_packets;
+        portals.group_count = params->portal_groups;
+        PathState p;
+        emitted = emit_portal(params, &sky, &sources, &portals, path, &p);
+        if (emitted)
+            paths[i] = p;
+    }
+    group_count_add(counters + FEN_CTR_EMITTED, (uint)emitted, &group_count);
+}

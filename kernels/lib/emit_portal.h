@@ -1,0 +1,125 @@
+/* emit_portal.h — the `portal` emission strategy (DESIGN.md §3.2, the paper's method 1; host half
+ * and the derivation: host/emission/portal_emission.h).
+ *
+ * Per path: the joint table picks the sun or a sky cell (exact probabilities); v is the sun's
+ * direction (or in its cone) or sampled in the cell proportionally to g; a portal group is chosen
+ * by A_g |v.n_g| among W(v) = sum_g A_g |v.n_g| (eq. 1 at group level), a triangle of it by area,
+ * x uniformly on the triangle; the origin is moved back along -v outside the scene's bounding
+ * sphere. N(x, v) = portal triangles on the ray's line (counted in the portals' own BVH from that
+ * origin, so every crossing has t > 0). Weight: sun E W / P(sun), sky W factor_k sin(theta); then
+ * divided by N (--portal-overlap weight) or kept with probability 1/N (reject: the path index is
+ * spent all the same, so rejected candidates count as emitted paths).
+ * Requires bvh_traverse.h (FEN_BVH_WIDTH).
+ */
+#ifndef FEN_EMIT_PORTAL_H
+#define FEN_EMIT_PORTAL_H
+
+#include "lib/emit_uniform.h"
+
+typedef struct {
+    const global float4* groups;      /* xyz unit normal, w area (m^2) */
+    const global uint* range;         /* per group: first triangle, count */
+    const global ulong* triangle_cdf; /* group g: entries [first + g, first + g + count] */
+    const global float4* vertices;    /* 3 per triangle */
+    const global BvhNode* nodes;      /* the portal triangles' own BVH */
+    const global TriPacket4* packets;
+    uint group_count;
+} Portals;
+
+/* Index i in [0, n) with cdf[i] <= r < cdf[i+1] for an integer CDF of n + 1 entries (binary:
+   a group has few triangles, or the table would be large anyway). */
+static inline uint cdf_search_binary(const global ulong* cdf, uint n, uint r)
+{
+    uint lo = 0, hi = n;
+    while (hi - lo > 1) {
+        const uint mid = (lo + hi) >> 1;
+        if (cdf[mid] <= (ulong)r)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* eq. (1): a portal triangle for direction `dir` -- a group by A_g |dir.n_g| (u_group in [0,1)),
+   then a triangle of it by area (32 random bits). *W receives sum_g A_g |dir.n_g|; returns
+   FEN_INVALID_ID when no portal faces the direction at all. */
+static inline uint portal_pick_triangle(const Portals* portals, float3 dir, float u_group, uint r_tri,
+                                        float* W_out)
+{
+    float W = 0.0f;
+    for (uint g = 0; g < portals->group_count; ++g)
+        W += portals->groups[g].w * fabs(dot(dir, portals->groups[g].xyz));
+    *W_out = W;
+    if (!(W > 0.0f))
+        return FEN_INVALID_ID;
+    const float target = u_group * W;
+    float acc = 0.0f;
+    uint g = 0;
+    for (; g + 1 < portals->group_count; ++g) {
+        acc += portals->groups[g].w * fabs(dot(dir, portals->groups[g].xyz));
+        if (target < acc)
+            break;
+    }
+    const uint first = portals->range[2 * g], count = portals->range[2 * g + 1];
+    return first + cdf_search_binary(portals->triangle_cdf + first + g, count, r_tri);
+}
+
+/* Fills *p with a new path; returns 0 when the candidate is rejected (overlap) or carries no light. */
+static inline int emit_portal(const global RenderParams* params, const Sky* sky,
+                              const SourceTable* sources, const Portals* portals, ulong path,
+                              PathState* p)
+{
+    p->path_lo = (uint)path;
+    p->path_hi = (uint)(path >> 32);
+    p->depth = 0;
+    const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT);
+    const RngBlock bits2 = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT_PORTAL);
+    const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
+    const float4 u2 = rng_unit24x4(bits2.y, bits2.z, bits2.w);
+
+    const uint entry = cdf_search(sources->cdf, sources->guide, sources->guide_shift, bits.x);
+    float3 dir;
+    float3 beta;
+    if (entry == 0) {
+        const float3 axis = params->sun_dir.xyz;
+        dir = params->sun_dir.w < 1.0f ? sample_cone(axis, params->sun_dir.w, u.z, u.w) : axis;
+        beta = params->sun_weight.xyz;
+        p->flags = FEN_PATH_ALIVE | FEN_PATH_FROM_SUN;
+    } else {
+        float w;
+        dir = -sky_sample(sky, entry - 1, u.z, u.w, &w);
+        beta = (float3)(w);
+        p->flags = FEN_PATH_ALIVE;
+    }
+
+    float W;
+    const uint t = portal_pick_triangle(portals, dir, u.x, bits2.x, &W);
+    if (t == FEN_INVALID_ID)
+        return 0;
+
+    /* uniform on the triangle */
+    const float su = sqrt(u2.x);
+    const float b1 = su * (1.0f - u2.y), b2 = su * u2.y;
+    const float3 p0 = portals->vertices[3 * t].xyz, p1 = portals->vertices[3 * t + 1].xyz,
+                 p2 = portals->vertices[3 * t + 2].xyz;
+    const float3 x = p0 + b1 * (p1 - p0) + b2 * (p2 - p0);
+    const float back = length(x - params->sphere.xyz) + params->sphere.w;
+    const float3 origin = x - dir * back;
+
+    /* overlap: N(x, v) portal triangles on the line */
+    const RayPre r = ray_setup(origin, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
+    const uint n = max(bvh_count_hits(portals->nodes, portals->packets, &r), 1u);
+    beta *= W;
+    if (params->portal_overlap == 1u)
+        beta /= (float)n;
+    else if (params->portal_overlap == 0u && u2.z * (float)n >= 1.0f)
+        return 0;
+
+    p->org = (float4)(origin, 0.0f);
+    p->dir = (float4)(dir, 0.0f);
+    p->beta = (float4)(beta, 0.0f);
+    return 1;
+}
+
+#endif /* FEN_EMIT_PORTAL_H */
