@@ -109,7 +109,7 @@ int main(int argc, char** argv)
     renderCmd->add_option("--batches", render.batches, "Independent batches for the noise estimate (default 16)");
     renderCmd->add_option("--camera-spp", render.cameraSpp,
                           "Camera-pass samples per pixel per batch, for the sky seen directly (default 1)");
-    renderCmd->add_option("--pool", render.poolSize, "Path slots on the device (default: 2^19 CPU, 2^21 GPU)");
+    renderCmd->add_option("--pool", render.poolSize, "Path slots on the device (default: 2^16 CPU, 2^21 GPU)");
     renderCmd->add_option("--exposure", render.exposure, "PNG preview exposure (default: ROI mean to mid-grey)");
     renderCmd->add_flag("--progress", progressOn, "Show progress even when stderr is not a terminal");
     renderCmd->add_flag("--no-progress", progressOff, "Never show progress");

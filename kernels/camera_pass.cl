@@ -19,30 +19,31 @@
 
 #define FEN_CAMERA_MAX_GLASS 16
 
-/* Camera samples of one pixel; returns the rays traced. */
-static inline uint camera_pixel(uint pixel, global const RenderParams* params, global const DevCamera* cam,
+/* Camera samples of one pixel; returns the rays traced, *cut the samples stopped by the glass
+   limit. */
+static inline uint camera_pixel(uint* cut, uint pixel, global const RenderParams* params, global const DevCamera* cam,
                                 global const BvhNode* nodes, global const TriPacket4* packets,
                                 global const uint* prim_material, global const DevMaterial* materials,
                                 global const float* sky_theta, global const float* sky_phi,
                                 global const float* sky_values, global float4* out)
 {
+    *cut = 0;
     if (pixel >= cam->width * cam->height)
         return 0;
-    Sky sky;
-    sky.theta = sky_theta;
-    sky.phi = sky_phi;
-    sky.values = sky_values;
-    sky.nt = params->sky_theta_nodes;
-    sky.np = params->sky_phi_nodes;
+    /* the camera pass only looks the sky up: no sampling weights */
+    const Sky sky = sky_from(sky_theta, sky_phi, sky_values, (const global float*)0,
+                             params->sky_theta_nodes, params->sky_phi_nodes);
     const uint px = pixel % cam->width, py = pixel / cam->width;
     float3 sum = (float3)(0.0f);
     uint rays = 0;
+    *cut = 0;
     for (uint s = 0; s < params->camera_spp; ++s) {
         const float4 u = rng_camera(params->seed, pixel, s, params->batch);
         const float3 dir = camera_direction(cam, (float)px + u.x, (float)py + u.y);
         float3 org = cam->position.xyz;
         float3 weight = (float3)(1.0f);
-        for (int k = 0; k < FEN_CAMERA_MAX_GLASS; ++k) {
+        int k = 0;
+        for (; k < FEN_CAMERA_MAX_GLASS; ++k) {
             const RayPre r = ray_setup(org, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
             uint packet_lane;
             const Hit h = bvh_intersect_closest_at(nodes, packets, &r, &packet_lane);
@@ -63,6 +64,7 @@ static inline uint camera_pixel(uint pixel, global const RenderParams* params, g
                                            packet_vertex(p, lane, 2), h.u, h.v, &offset_m);
             org = offset_ray_origin(x, offset_m, ng, dir);
         }
+        *cut += k == FEN_CAMERA_MAX_GLASS;
     }
     out[pixel] = (float4)(sum / (float)max(params->camera_spp, 1u), 0.0f);
     return rays;
@@ -76,7 +78,9 @@ kernel void camera_pass(global const RenderParams* params, global const DevCamer
                         volatile global ulong* counters)
 {
     local uint rays_in_group;
-    const uint rays = camera_pixel(get_global_id(0), params, cam, nodes, packets, prim_material, materials,
+    uint cut;
+    const uint rays = camera_pixel(&cut, get_global_id(0), params, cam, nodes, packets, prim_material, materials,
                                    sky_theta, sky_phi, sky_values, out);
     group_count_add(counters + FEN_CTR_CAMERA_RAYS, rays, &rays_in_group);
+    group_count_add(counters + FEN_CTR_CAMERA_GLASS_CUT, cut, &rays_in_group);
 }

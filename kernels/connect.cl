@@ -2,7 +2,7 @@
  *
  * Work-item i: if connections[i] names a pixel, the segment from its origin to the pinhole is
  * traced (glass multiplies by T (1 - R), anything opaque blocks: lib/transmittance.h) and the
- * surviving contribution is added to the pixel in 64-bit fixed point (lib/accumulate.h).
+ * surviving contribution is added to the pixel in 128-bit fixed point (lib/accumulate.h).
  * Atomics: pixel accumulators, shadow-ray counter (per work-group).
  */
 #include "lib/accumulate.h"

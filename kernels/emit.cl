@@ -25,16 +25,8 @@ kernel void emit_paths(global const RenderParams* params, volatile global ulong*
     group_count_add(counters + FEN_CTR_EMITTED, (uint)emit, &group_count);
     if (!emit)
         return;
-    Sky sky;
-    sky.theta = sky_theta;
-    sky.phi = sky_phi;
-    sky.values = sky_values;
-    sky.factor = sky_factor;
-    sky.nt = params->sky_theta_nodes;
-    sky.np = params->sky_phi_nodes;
-    SourceTable sources;
-    sources.cdf = source_cdf;
-    sources.guide = source_guide;
-    sources.guide_shift = params->source_guide_shift;
+    const Sky sky = sky_from(sky_theta, sky_phi, sky_values, sky_factor, params->sky_theta_nodes,
+                             params->sky_phi_nodes);
+    const SourceTable sources = source_table(source_cdf, source_guide, params->source_guide_shift);
     paths[i] = emit_uniform(params, &sky, &sources, path);
 }

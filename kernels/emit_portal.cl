@@ -24,17 +24,9 @@ kernel void emit_portal_paths(global const RenderParams* params, volatile global
     const ulong path = group_ticket(counters + FEN_CTR_NEXT_PATH, dead, &group_count, &group_base);
     int emitted = 0;
     if (dead && path < params->path_end) {
-        Sky sky;
-        sky.theta = sky_theta;
-        sky.phi = sky_phi;
-        sky.values = sky_values;
-        sky.factor = sky_factor;
-        sky.nt = params->sky_theta_nodes;
-        sky.np = params->sky_phi_nodes;
-        SourceTable sources;
-        sources.cdf = source_cdf;
-        sources.guide = source_guide;
-        sources.guide_shift = params->source_guide_shift;
+        const Sky sky = sky_from(sky_theta, sky_phi, sky_values, sky_factor,
+                                 params->sky_theta_nodes, params->sky_phi_nodes);
+        const SourceTable sources = source_table(source_cdf, source_guide, params->source_guide_shift);
         Portals portals;
         portals.groups = portal_groups;
         portals.range = portal_range;

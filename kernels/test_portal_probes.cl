@@ -1,8 +1,6 @@
 /* test_portal_probes.cl — portal emission exposed to tests/kernels/portal_sampling_test.cpp.
  * Build with -DFEN_BVH_WIDTH (the portals' BVH). Not used by rendering.
  */
-#include "lib/group_count.h"
-
 #include "lib/bvh_traverse.h"
 #include "lib/emit_portal.h"
 
@@ -20,8 +18,8 @@ kernel void portal_pick_probe(global const float4* groups, global const uint* ra
     p.triangle_cdf = triangle_cdf;
     p.group_count = group_count;
     const RngBlock bits = rng_bits(seed, 0x13579bdu, i, 0, 0, 0);
-    float W;
-    out[i] = portal_pick_triangle(&p, dir.xyz, fen_u32_to_unit(bits.y), bits.x, &W);
+    float scale;
+    out[i] = portal_pick_triangle(&p, dir.xyz, bits.y, bits.x, &scale);
 }
 
 /* out[i] = the weight (rgb, before the camera) and alive flag of path i emitted by the portal
@@ -38,17 +36,9 @@ kernel void portal_emit_probe(global const RenderParams* params, global const fl
     const uint i = get_global_id(0);
     if (i >= n)
         return;
-    Sky sky;
-    sky.theta = sky_theta;
-    sky.phi = sky_phi;
-    sky.values = sky_values;
-    sky.factor = sky_factor;
-    sky.nt = params->sky_theta_nodes;
-    sky.np = params->sky_phi_nodes;
-    SourceTable sources;
-    sources.cdf = source_cdf;
-    sources.guide = source_guide;
-    sources.guide_shift = params->source_guide_shift;
+    const Sky sky = sky_from(sky_theta, sky_phi, sky_values, sky_factor, params->sky_theta_nodes,
+                             params->sky_phi_nodes);
+    const SourceTable sources = source_table(source_cdf, source_guide, params->source_guide_shift);
     Portals portals;
     portals.groups = portal_groups;
     portals.range = portal_range;
@@ -60,4 +50,17 @@ kernel void portal_emit_probe(global const RenderParams* params, global const fl
     PathState p;
     const int ok = emit_portal(params, &sky, &sources, &portals, i, &p);
     out[i] = ok ? (float4)(p.beta.xyz, 1.0f) : (float4)(0.0f);
+}
+
+/* out[i] = bvh_count_hits of rays[i] (portal emission's N(x, v)). */
+kernel void count_probe(global const BvhNode* nodes, global const TriPacket4* packets,
+                        global const Ray* rays, global uint* out, uint n)
+{
+    const uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    const Ray ray = rays[i];
+    const RayPre r = ray_setup(ray.org_tmin.xyz, ray.dir_tmax.xyz, ray.org_tmin.w, ray.dir_tmax.w,
+                               FEN_BVH_WIDTH);
+    out[i] = bvh_count_hits(nodes, packets, &r);
 }

@@ -100,13 +100,7 @@ kernel void sky_probe(global const float* theta, global const float* phi, global
     const uint i = get_global_id(0);
     if (i >= n)
         return;
-    Sky s;
-    s.theta = theta;
-    s.phi = phi;
-    s.values = values;
-    s.factor = factor;
-    s.nt = nt;
-    s.np = np;
+    const Sky s = sky_from(theta, phi, values, factor, nt, np);
     const RngBlock bits = rng_bits(seed, 0x2468ace0u, i, 0, 0, 0);
     const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
     float w;
@@ -123,3 +117,12 @@ kernel void fresnel_probe(global const float* cos_i, global float* out, uint n, 
         out[i] = fresnel_dielectric(cos_i[i], eta);
 }
 
+
+/* out[i] = cdf_search for the given 32-bit values (boundaries, not random draws). */
+kernel void cdf_probe_at(global const ulong* cdf, global const uint* guide, uint shift,
+                         global const uint* r, global uint* out, uint n)
+{
+    const uint i = get_global_id(0);
+    if (i < n)
+        out[i] = cdf_search(cdf, guide, shift, r[i]);
+}

@@ -22,36 +22,35 @@ PortalOverlap parsePortalOverlap(const std::string& s)
 
 namespace {
 
-// sum_g A_g ∫_cell |v.n_g| g dv for cell (i, j).
+// sum_g A_g ∫_cell |v.n_g| g dv for cell (i, j): exact where no portal plane cuts the cell
+// (A_g |F_ij . n_g|), converged where one does (Goniogram::cellClippedIntegral).
 double cellPortalWeight(const Goniogram& g, const PortalSet& portals, std::size_t i, std::size_t j)
 {
-    const double t0 = g.theta()[i], t1 = g.theta()[i + 1], p0 = g.phi()[j], p1 = g.phi()[j + 1];
-    const glm::dvec3 F = g.cellDirectionIntegral(i, j);
     double total = 0.0;
-    for (const PortalGroup& grp : portals.groups) {
-        // Does the plane cut the cell? Signs of v.n over a 5 x 5 lattice of the cell.
-        bool pos = false, neg = false;
-        for (int a = 0; a <= 4; ++a)
-            for (int b = 0; b <= 4; ++b) {
-                const double d = glm::dot(skyDirection(t0 + (t1 - t0) * a / 4.0, p0 + (p1 - p0) * b / 4.0),
-                                          grp.normal);
-                pos = pos || d > 0.0;
-                neg = neg || d < 0.0;
-            }
-        if (!(pos && neg)) {
-            total += grp.area_m2 * std::fabs(glm::dot(F, grp.normal));
-            continue;
-        }
-        double s = 0.0;
-        const int m = 8;
-        for (int a = 0; a < m; ++a)
-            for (int b = 0; b < m; ++b) {
-                const double th = t0 + (t1 - t0) * (a + 0.5) / m, ph = p0 + (p1 - p0) * (b + 0.5) / m;
-                s += std::fabs(glm::dot(skyDirection(th, ph), grp.normal)) * g.eval(th, ph) * std::sin(th);
-            }
-        total += grp.area_m2 * s * (t1 - t0) * (p1 - p0) / (m * m);
-    }
+    for (const PortalGroup& grp : portals.groups)
+        total += grp.area_m2 * (g.cellClippedIntegral(i, j, grp.normal) +
+                                g.cellClippedIntegral(i, j, -grp.normal));
     return total;
+}
+
+// The sun's entry in the table: E W over its disk -- the largest W among the axis and the rim, so
+// a portal edge-on to the axis but not to the whole disk still gets the sun's light.
+double sunPortalWeight(const Sun& sun, const PortalSet& portals)
+{
+    double W = portals.projectedArea(sun.travelDirection);
+    if (sun.angularRadiusRad > 0.0) {
+        const glm::dvec3 a = sun.travelDirection;
+        const glm::dvec3 t1 = glm::normalize(glm::cross(a, std::fabs(a.y) < 0.9 ? glm::dvec3(0, 1, 0)
+                                                                                : glm::dvec3(1, 0, 0)));
+        const glm::dvec3 t2 = glm::cross(a, t1);
+        for (int k = 0; k < 16; ++k) {
+            const double ph = 2.0 * M_PI * k / 16.0;
+            const glm::dvec3 v = std::cos(sun.angularRadiusRad) * a +
+                                 std::sin(sun.angularRadiusRad) * (std::cos(ph) * t1 + std::sin(ph) * t2);
+            W = std::max(W, portals.projectedArea(v));
+        }
+    }
+    return W;
 }
 
 }  // namespace
@@ -66,7 +65,7 @@ PortalEmission setupPortalEmission(const Scene& scene, const SkyTables& sky,
 
     const glm::dvec3 E = scene.sun.present ? scene.sun.illuminanceRgb_lux : glm::dvec3(0.0);
     const double sunY = 0.2126 * E.r + 0.7152 * E.g + 0.0722 * E.b;
-    e.sunFlux_lm = sunY * e.portals.projectedArea(scene.sun.travelDirection);
+    e.sunFlux_lm = scene.sun.present ? sunY * sunPortalWeight(scene.sun, e.portals) : 0.0;
     std::vector<double> w{e.sunFlux_lm};
     if (goniogram && sky.cells > 0) {
         std::vector<double> cells(sky.cells);
@@ -87,8 +86,10 @@ PortalEmission setupPortalEmission(const Scene& scene, const SkyTables& sky,
         w[0] = 1.0;  // no light reaches the portals: the (zero-weight) sun, so the table is valid
     e.sources = makeIntegerCdf(w);
     e.pSun = e.sunFlux_lm > 0.0 ? e.sources.probability(0) : 0.0;
+    // A disk sun's directions are uniform in its cone, so a plane facing it receives
+    // E (1 + cos a) / 2 per unit weight: 2 / (1 + cos a) restores its normal illuminance E.
     if (e.pSun > 0.0)
-        e.sunWeight = E / e.pSun;
+        e.sunWeight = E * (2.0 / (1.0 + std::cos(scene.sun.angularRadiusRad))) / e.pSun;
     e.skyFactor.assign(std::max<std::uint32_t>(1, sky.cells), 0.0f);
     for (std::uint32_t k = 0; k < sky.cells; ++k) {
         const double p = e.sources.probability(1 + k);
@@ -100,8 +101,10 @@ PortalEmission setupPortalEmission(const Scene& scene, const SkyTables& sky,
                             static_cast<float>(g.normal.z), static_cast<float>(g.area_m2)});
         e.groupRange.push_back(g.first);
         e.groupRange.push_back(g.count);
-        const IntegerCdf c = makeIntegerCdf(std::vector<double>(
-            e.portals.area_m2.begin() + g.first, e.portals.area_m2.begin() + g.first + g.count));
+        const IntegerCdf c = makeIntegerCdf(
+            std::vector<double>(e.portals.area_m2.begin() + g.first,
+                                e.portals.area_m2.begin() + g.first + g.count),
+            false);
         e.triangleCdf.insert(e.triangleCdf.end(), c.cdf.begin(), c.cdf.end());
     }
     for (const Triangle& t : e.portals.triangles)

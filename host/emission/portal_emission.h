@@ -11,8 +11,8 @@
 // sky W(v) factor_k sin(theta), factor_k = B_k / P(entry k) (see lib/sky.h).
 // The table follows eqs. (1)-(2): the sun by E W(v_sun), cell k by sum_g A_g ∫_k |v.n_g| g dv,
 // which is A_g |F_k . n_g| (F_k = ∫_k v g dv) where the cell lies on one side of the plane, and a
-// midpoint sum where the plane cuts it. These set probabilities only; the weights use the
-// probabilities realised, so any error there costs variance, never bias.
+// converged integral where the plane cuts it. These set probabilities only; the weights use the
+// probabilities realised, so any error there would cost variance, never bias.
 #pragma once
 
 #include <optional>

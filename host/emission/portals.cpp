@@ -239,18 +239,32 @@ PortalSet collectPortals(const Scene& scene, const std::string& override)
                                           "true (panes) or \"hull\" (frames), or name them with --portals"));
     }
 
+    // Each triangle belongs to its nearest chosen ancestor-or-self: a node marked as a whole
+    // (a Blender object's parent, say) brings its descendants' geometry, and a triangle counts once
+    // however many of its ancestors are chosen or named.
+    std::sort(chosen.begin(), chosen.end());
+    chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+    std::vector<char> isChosen(scene.nodeNames.size(), 0);
+    for (std::uint32_t n : chosen)
+        isChosen[n] = 1;
+    std::map<std::uint32_t, std::vector<Triangle>> byNode;
+    for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+        int n = static_cast<int>(scene.triangleNode[t]);
+        while (n >= 0 && !isChosen[static_cast<std::size_t>(n)])
+            n = static_cast<std::size_t>(n) < scene.nodeParent.size() ? scene.nodeParent[static_cast<std::size_t>(n)] : -1;
+        if (n >= 0)
+            byNode[static_cast<std::uint32_t>(n)].push_back(scene.triangles[t]);
+    }
+
     PortalSet set;
     std::vector<Triangle> all;
     for (std::uint32_t node : chosen) {
         const std::string label = scene.nodeNames[node].empty() ? cat("node ", node)
                                                                 : cat("node '", scene.nodeNames[node], "'");
         const std::string where = cat(scene.source, ": portal ", label);
-        std::vector<Triangle> own;
-        for (std::size_t t = 0; t < scene.triangles.size(); ++t)
-            if (scene.triangleNode[t] == node)
-                own.push_back(scene.triangles[t]);
+        std::vector<Triangle> own = byNode[node];
         if (own.empty())
-            throw Error(cat(where, " has no triangles"));
+            throw Error(cat(where, " has no triangles (nor have its descendants)"));
         if (kind[node] == PortalMark::Hull) {
             std::vector<glm::dvec3> pts;
             for (const auto& t : own)

@@ -12,7 +12,7 @@ constexpr double kUnits = 4294967296.0;  // 2^32
 
 }  // namespace
 
-IntegerCdf makeIntegerCdf(const std::vector<double>& weight)
+IntegerCdf makeIntegerCdf(const std::vector<double>& weight, bool guide)
 {
     IntegerCdf c;
     double total = 0.0;
@@ -33,6 +33,8 @@ IntegerCdf makeIntegerCdf(const std::vector<double>& weight)
     c.cdf.assign(weight.size() + 1, 0);
     for (std::size_t e = 0; e < weight.size(); ++e)
         c.cdf[e + 1] = c.cdf[e] + n[e];
+    if (!guide)
+        return c;
     // Guide table: 2^bits >= 2 entries per CDF entry, guide[b] = the entry holding r = b 2^shift.
     std::uint32_t bits = 1;
     while ((std::size_t{1} << bits) < 2 * weight.size() && bits < 24)
@@ -101,8 +103,10 @@ EmissionSetup setupUniformEmission(const Scene& scene, const SkyTables& sky)
         w[0] = 1.0;  // no light at all: a table that draws the (zero-weight) sun
     e.sources = makeIntegerCdf(w);
     e.pSun = e.sunFlux > 0.0 ? e.sources.probability(0) : 0.0;
+    // A disk sun's directions are uniform in its cone, so a plane facing it receives
+    // E (1 + cos a) / 2 per unit weight: 2 / (1 + cos a) restores its normal illuminance E.
     if (e.pSun > 0.0)
-        e.sunWeight = E * disk / e.pSun;
+        e.sunWeight = E * disk * (2.0 / (1.0 + std::cos(scene.sun.angularRadiusRad))) / e.pSun;
     e.skyWeight = disk;
     e.skyFactor.resize(sky.cells);
     for (std::uint32_t k = 0; k < sky.cells; ++k) {
@@ -122,7 +126,6 @@ void fillEmissionParams(const EmissionSetup& e, const SkyTables& sky, dev::Rende
     p.sun_weight = {static_cast<float>(e.sunWeight.r), static_cast<float>(e.sunWeight.g),
                     static_cast<float>(e.sunWeight.b), 0.0f};
     p.sky_weight = {static_cast<float>(e.skyWeight), 0.0f, 0.0f, 0.0f};
-    p.sky_cells = sky.cells;
     p.sky_theta_nodes = sky.thetaNodes;
     p.sky_phi_nodes = sky.phiNodes;
     p.source_guide_shift = e.sources.guideShift;

@@ -40,8 +40,9 @@ struct IntegerCdf {
         return static_cast<double>(cdf[e + 1] - cdf[e]) / 4294967296.0;
     }
 };
-// Units in proportion to `weight` (>= 0), at least one for every positive weight.
-IntegerCdf makeIntegerCdf(const std::vector<double>& weight);
+// Units in proportion to `weight` (>= 0), at least one for every positive weight; `guide`: also
+// the guide table (cdf_search), not needed for binary searches.
+IntegerCdf makeIntegerCdf(const std::vector<double>& weight, bool guide = true);
 
 struct EmissionSetup {
     glm::dvec3 sphereCentre{0.0};
@@ -54,7 +55,6 @@ struct EmissionSetup {
     glm::dvec3 sunWeight{0.0};     // rgb weight of a sun path: E pi R^2 / P(sun)
     double skyWeight = 0.0;        // pi R^2: times factor_k sin(theta) for a sky path
     double referenceLuminance_cd_m2 = 1.0;  // brightest plausible diffuse luminance (fixed-point scale)
-    bool hasLight() const { return sunFlux + skyFlux > 0.0; }
 };
 
 EmissionSetup setupUniformEmission(const Scene& scene, const SkyTables& sky);

@@ -169,7 +169,8 @@ int runRender(const RenderOptions& opt)
                          {"disk_radius_m", r.emission.sphereRadius_m}};
     j["counters"] = {{"bad_contributions", r.badContributions},
                      {"fixed_point_overflows", r.overflows},
-                     {"max_bounce_cuts", r.maxBounceCuts}};
+                     {"max_bounce_cuts", r.maxBounceCuts},
+                     {"camera_glass_cuts", r.cameraGlassCuts}};
     for (const auto& [name, e] : r.kernels)
         j["kernels"][name] = {{"launches", e.launches}, {"device_seconds", e.deviceSeconds}};
     j["png_exposure"] = exposure;

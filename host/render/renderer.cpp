@@ -244,6 +244,7 @@ struct Renderer::Impl {
         r.badContributions += ctr[FEN_CTR_BAD_CONTRIBUTIONS];
         r.overflows += ctr[FEN_CTR_OVERFLOWS];
         r.maxBounceCuts += ctr[FEN_CTR_MAX_DEPTH];
+        r.cameraGlassCuts += ctr[FEN_CTR_CAMERA_GLASS_CUT];
 
         const std::size_t px = static_cast<std::size_t>(width) * height;
         std::vector<std::uint64_t> acc(px * 6);
@@ -309,8 +310,8 @@ struct Renderer::Impl {
             r.calibrationSeconds = since(c0);
             const double rate = cal / std::max(last, 1e-6);
             const double left = std::max(0.0, settings.timeSeconds - r.calibrationSeconds);
-            perBatch = std::max<std::uint64_t>(
-                pool, static_cast<std::uint64_t>(rate * left / batches));
+            perBatch = static_cast<std::uint64_t>(
+                std::clamp(rate * left / batches, static_cast<double>(pool), 1e15));
             pathsDone = 0;
             raysDone = 0;
             start = Clock::now();
@@ -403,8 +404,13 @@ Renderer::Renderer(ocl::Context& ctx, const Scene& scene, const std::optional<Go
                         "compares batches)"));
     if (settings.maxBounces < 1)
         throw Error(cat("--max-bounces ", settings.maxBounces, " must be at least 1"));
-    if (settings.cameraSpp < 1)
-        throw Error(cat("--camera-spp ", settings.cameraSpp, " must be at least 1"));
+    if (settings.cameraSpp < 1 || settings.cameraSpp > 1024)
+        throw Error(cat("--camera-spp ", settings.cameraSpp, " must be in 1..1024"));
+    if (settings.paths == 0 && settings.timeSeconds > 1e7)
+        throw Error(cat("--time ", settings.timeSeconds, " s is beyond 10^7 s (115 days)"));
+    if (!ctx.info().int64Atomics)
+        throw Error(cat("OpenCL device ", ctx.info().label(), " lacks cl_khr_int64_base_atomics, "
+                        "which the pixel accumulators need"));
     for (const Roi& roi : settings.rois)
         if (roi.x0 < 0 || roi.y0 < 0 || roi.x1 > width || roi.y1 > height || roi.x0 >= roi.x1 ||
             roi.y0 >= roi.y1)

@@ -2,7 +2,7 @@
 //
 // A pool of path slots on the device; per iteration emit -> intersect -> shade -> connect
 // (kernels/*.cl), until the batch's paths are all emitted and dead. Paths are rendered in B
-// equal, independent batches: each batch's pixels are accumulated in 64-bit fixed point (bit-
+// equal, independent batches: each batch's pixels are accumulated in 128-bit fixed point (bit-
 // identical for a given seed and device), converted on the host, and folded into a running sum
 // and sum of squares, so every pixel carries its own standard error without a reference.
 // The camera pass adds the sky seen directly once per batch. With a time budget, a short
@@ -50,7 +50,7 @@ struct RenderResult {
     std::uint64_t paths = 0, pathsPerBatch = 0;
     int batches = 0;
     std::uint64_t extensionRays = 0, shadowRays = 0, cameraRays = 0;
-    std::uint64_t badContributions = 0, overflows = 0, maxBounceCuts = 0;
+    std::uint64_t badContributions = 0, overflows = 0, maxBounceCuts = 0, cameraGlassCuts = 0;
     double renderSeconds = 0.0;       // the counted batches
     double calibrationSeconds = 0.0;  // --time only: the uncounted first batch
     double bvhSeconds = 0.0, kernelBuildSeconds = 0.0;

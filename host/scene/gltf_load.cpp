@@ -1,6 +1,7 @@
 // gltf_load.cpp — glTF 2.0 to Scene (gltf_load.h), via tinygltf.
 #include "scene/gltf_load.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -249,6 +250,15 @@ std::vector<Material> readMaterials(const tinygltf::Model& m, const std::string&
     return out;
 }
 
+// Luminances and illuminances become floats on the device: keep them far below float's range.
+constexpr double kMaxLight = 1e30;
+
+void checkLight(double v, const std::string& key)
+{
+    if (v > kMaxLight)
+        throw Error(cat(key, ": ", v, " is beyond ", kMaxLight));
+}
+
 SkySpec readSky(const nlohmann::json& sky, const std::string& where)
 {
     SkySpec spec;
@@ -260,6 +270,7 @@ SkySpec readSky(const nlohmann::json& sky, const std::string& where)
         spec.luminance_cd_m2 = r.number("luminance");
         if (spec.luminance_cd_m2 < 0.0)
             throw Error(cat(r.keyPath("luminance"), ": negative luminance ", spec.luminance_cd_m2));
+        checkLight(spec.luminance_cd_m2, r.keyPath("luminance"));
     } else if (type == "cie") {
         spec.type = SkySpec::Type::Cie;
         spec.cieType = r.integer("cie_type");
@@ -269,6 +280,8 @@ SkySpec readSky(const nlohmann::json& sky, const std::string& where)
         if (spec.zenithLuminance_cd_m2 < 0.0)
             throw Error(cat(r.keyPath("zenith_luminance"), ": negative luminance ",
                             spec.zenithLuminance_cd_m2));
+        // CIE skies brighten towards the sun by up to ~40x the zenith
+        checkLight(spec.zenithLuminance_cd_m2 * 100.0, r.keyPath("zenith_luminance"));
         spec.sunAltitudeDeg = r.number("sun_altitude_deg");
         if (spec.sunAltitudeDeg < 0.0 || spec.sunAltitudeDeg > 90.0)
             throw Error(cat(r.keyPath("sun_altitude_deg"), ": ", spec.sunAltitudeDeg,
@@ -279,6 +292,9 @@ SkySpec readSky(const nlohmann::json& sky, const std::string& where)
         spec.zenithDeg = r.numbers("zenith_deg");
         spec.azimuthDeg = r.numbers("azimuth_deg");
         spec.table_cd_m2 = r.numberRows("luminance");
+        for (std::size_t i = 0; i < spec.table_cd_m2.size(); ++i)
+            for (std::size_t j = 0; j < spec.table_cd_m2[i].size(); ++j)
+                checkLight(spec.table_cd_m2[i][j], cat(r.keyPath("luminance"), "[", i, "][", j, "]"));
     } else {
         throw Error(cat(r.keyPath("type"), ": unknown sky type '", type,
                         "' (uniform, cie or table)"));
@@ -355,6 +371,11 @@ Scene loadGltf(const std::string& path)
     scene.source = path;
     scene.nodeNames.resize(model.nodes.size());
     scene.nodePortal.assign(model.nodes.size(), PortalMark::None);
+    scene.nodeParent.assign(model.nodes.size(), -1);
+    for (std::size_t i = 0; i < model.nodes.size(); ++i)
+        for (int c : model.nodes[i].children)
+            if (c >= 0 && c < static_cast<int>(model.nodes.size()))
+                scene.nodeParent[static_cast<std::size_t>(c)] = static_cast<int>(i);
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
         scene.nodeNames[i] = model.nodes[i].name;
     scene.materials = readMaterials(model, path, scene);
@@ -445,7 +466,14 @@ Scene loadGltf(const std::string& path)
             if (glm::length(minusZ) == 0.0)
                 throw Error(cat(where, ": the sun's transform is degenerate"));
             scene.sun.travelDirection = glm::normalize(minusZ);
+            if (!(scene.sun.travelDirection.y < 0.0))
+                throw Error(cat(where, ": the sun is below the horizon (its light travels along -z = (",
+                                scene.sun.travelDirection.x, ", ", scene.sun.travelDirection.y, ", ",
+                                scene.sun.travelDirection.z, "), not downwards)"));
             scene.sun.illuminanceRgb_lux = L.intensity * color;
+            checkLight(std::max({scene.sun.illuminanceRgb_lux.r, scene.sun.illuminanceRgb_lux.g,
+                                 scene.sun.illuminanceRgb_lux.b}),
+                       lwhere + ".intensity * color");
             const nlohmann::json lextras = toJson(L.extras);
             if (!lextras.is_null()) {
                 JsonReader le(lextras, lwhere + ".extras");
@@ -468,6 +496,18 @@ Scene loadGltf(const std::string& path)
         scene.bounds.grow(t.p0);
         scene.bounds.grow(t.p1);
         scene.bounds.grow(t.p2);
+    }
+    // A CIE sky is drawn for a sun position; a directional light elsewhere is likely a mistake.
+    if (scene.sun.present && scene.sky.type == SkySpec::Type::Cie) {
+        const glm::dvec3 toSun = -scene.sun.travelDirection;
+        const double alt = std::asin(std::clamp(toSun.y, -1.0, 1.0)) * 180.0 / M_PI;
+        const double h = scene.sky.sunAltitudeDeg * M_PI / 180.0, A = scene.sky.sunAzimuthDeg * M_PI / 180.0;
+        const glm::dvec3 skySun(std::cos(h) * std::sin(A), std::sin(h), -std::cos(h) * std::cos(A));
+        const double apart = std::acos(std::clamp(glm::dot(toSun, skySun), -1.0, 1.0)) * 180.0 / M_PI;
+        if (apart > 1.0)
+            scene.warnings.push_back(cat(path, ": the sun (node '", scene.sun.nodeName, "', altitude ",
+                                         alt, " deg) is ", apart, " deg from the CIE sky's sun ",
+                                         "(sun_altitude_deg / sun_azimuth_deg)"));
     }
     return scene;
 }

@@ -61,6 +61,7 @@ struct Scene {
     std::vector<std::uint32_t> triangleMaterial;
     std::vector<std::string> nodeNames;        // per glTF node ("" when unnamed)
     std::vector<PortalMark> nodePortal;        // per glTF node
+    std::vector<int> nodeParent;               // per glTF node; -1 for a root (or unknown)
     std::vector<Material> materials;           // never empty once loaded
     Sun sun;
     SkySpec sky;

@@ -424,6 +424,16 @@ double Goniogram::illuminance(const glm::dvec3& normal) const
     return sum;
 }
 
+double Goniogram::cellClippedIntegral(std::size_t i, std::size_t j, const glm::dvec3& n) const
+{
+    const Patch c{theta_[i],
+                  theta_[i + 1],
+                  phi_[j],
+                  phi_[j + 1],
+                  {{value(i, j), value(i, j + 1)}, {value(i + 1, j), value(i + 1, j + 1)}}};
+    return clippedIntegral(n, c, 0);
+}
+
 Goniogram Goniogram::refined(double maxThetaStepRad, double maxPhiStepRad) const
 {
     if (!(maxThetaStepRad > 0) || !(maxPhiStepRad > 0))

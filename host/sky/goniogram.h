@@ -54,6 +54,10 @@ public:
     // plane that does not cut the cell is F_ij . n -- the three numbers per cell that the portal
     // strategy shares between all window triangles (DESIGN.md §3.2); illuminance() uses it too.
     glm::dvec3 cellDirectionIntegral(std::size_t i, std::size_t j) const;
+    // ∫_cell g max(0, w . n) dw for a unit n: exact on a cell the plane does not cut (F_ij . n or
+    // 0), converged like illuminance() on one it cuts. ∫_cell |w . n| g dw is this for n plus this
+    // for -n: the portal strategy's eq. (2) per cell and portal plane.
+    double cellClippedIntegral(std::size_t i, std::size_t j, const glm::dvec3& n) const;
 
     // ∫ over the hemisphere of g dw (cd/m^2 sr): the sum of cellIntegralSin.
     double integral() const;

@@ -7,7 +7,7 @@
  * test never culls a box that holds the hit -- a flat box around an axis-aligned wall included.
  * Closest hit visits children nearest first and keeps each pushed child's entry distance so a
  * subtree farther than the current hit is skipped when popped. The stack bound
- * FEN_BVH_STACK_SIZE is proven on the host for each tree (bvh/bvh_wide.cpp: stackBound).
+ * FEN_BVH_STACK_SIZE is proven on the host for each tree (bvh/bvh_flat.cpp).
  * Requires FEN_BVH_WIDTH (2, 4 or 8) to be defined before inclusion.
  */
 #ifndef FEN_BVH_TRAVERSE_H
@@ -196,78 +196,81 @@ static inline Hit bvh_intersect_closest(const global BvhNode* nodes,
     return bvh_intersect_closest_at(nodes, packets, r, &packet_lane);
 }
 
-/* Is anything hit in (tmin, tmax)? Children are visited in any order: the first hit ends it. */
-static inline int bvh_intersect_any(const global BvhNode* nodes, const global TriPacket4* packets,
-                                    const RayPre* r)
+/* Any-order traversal as an iterator over the leaves the ray's interval reaches: the queries that
+   need no nearest-first order (any hit, counting hits, transmittance through glass) are loops over
+   bvh_walk_next. Children are visited in whatever order the mask gives. */
+typedef struct {
+    uint stack[FEN_BVH_STACK_SIZE];
+    int sp;
+    uint cur;  /* next reference to look at; FEN_INVALID_ID when done */
+} BvhWalk;
+
+static inline void bvh_walk_begin(BvhWalk* w)
 {
-    uint stack_ref[FEN_BVH_STACK_SIZE];
-    int sp = 0;
-    uint cur = 0;
+    w->sp = 0;
+    w->cur = 0;
+}
+
+/* The next leaf's packet index, or FEN_INVALID_ID when the walk is over. */
+static inline uint bvh_walk_next(BvhWalk* w, const global BvhNode* nodes, const RayPre* r)
+{
     float tnear[FEN_BVH_WIDTH];
     for (;;) {
-        if (!(cur & FEN_LEAF_BIT)) {
-            const global BvhNode* n = nodes + cur;
-            uint bits = bvh_wide_test(n, r, r->tmax, tnear);
-            if (bits != 0) {
-                int k = bvh_lowest_bit(bits);
-                bits &= bits - 1;
-                cur = n->child[k];
-                while (bits != 0) {
-                    k = bvh_lowest_bit(bits);
-                    bits &= bits - 1;
-                    stack_ref[sp++] = n->child[k];
-                }
-                continue;
-            }
-        } else {
-            float4 b1, b2;
-            const float4 t =
-                tri_packet_intersect(packets + (cur & ~FEN_LEAF_BIT), r, r->tmax, &b1, &b2);
-            if (tri_packet_min(t) < INFINITY)
-                return 1;
+        const uint cur = w->cur;
+        if (cur == FEN_INVALID_ID)
+            return FEN_INVALID_ID;
+        if (cur & FEN_LEAF_BIT) {
+            w->cur = w->sp > 0 ? w->stack[--w->sp] : FEN_INVALID_ID;
+            return cur & ~FEN_LEAF_BIT;
         }
-        if (sp == 0)
-            return 0;
-        cur = stack_ref[--sp];
+        const global BvhNode* n = nodes + cur;
+        uint bits = bvh_wide_test(n, r, r->tmax, tnear);
+        if (bits == 0) {
+            w->cur = w->sp > 0 ? w->stack[--w->sp] : FEN_INVALID_ID;
+            continue;
+        }
+        int k = bvh_lowest_bit(bits);
+        bits &= bits - 1;
+        w->cur = n->child[k];
+        while (bits != 0) {
+            k = bvh_lowest_bit(bits);
+            bits &= bits - 1;
+            w->stack[w->sp++] = n->child[k];
+        }
     }
 }
 
-/* How many distinct triangles the ray crosses in (tmin, tmax): every leaf the ray reaches is
-   tested; a packet's repeated last triangle counts once. (Portal emission's N(x, v).) */
+/* Is anything hit in (tmin, tmax)? The first hit ends it. */
+static inline int bvh_intersect_any(const global BvhNode* nodes, const global TriPacket4* packets,
+                                    const RayPre* r)
+{
+    BvhWalk w;
+    bvh_walk_begin(&w);
+    for (uint leaf; (leaf = bvh_walk_next(&w, nodes, r)) != FEN_INVALID_ID;) {
+        float4 b1, b2;
+        if (tri_packet_min(tri_packet_intersect(packets + leaf, r, r->tmax, &b1, &b2)) < INFINITY)
+            return 1;
+    }
+    return 0;
+}
+
+/* How many distinct triangles the ray crosses in (tmin, tmax): a packet's repeated last triangle
+   counts once. (Portal emission's N(x, v).) */
 static inline uint bvh_count_hits(const global BvhNode* nodes, const global TriPacket4* packets,
                                   const RayPre* r)
 {
-    uint stack_ref[FEN_BVH_STACK_SIZE];
-    int sp = 0;
-    uint cur = 0, count = 0;
-    float tnear[FEN_BVH_WIDTH];
-    for (;;) {
-        if (!(cur & FEN_LEAF_BIT)) {
-            const global BvhNode* n = nodes + cur;
-            uint bits = bvh_wide_test(n, r, r->tmax, tnear);
-            if (bits != 0) {
-                int k = bvh_lowest_bit(bits);
-                bits &= bits - 1;
-                cur = n->child[k];
-                while (bits != 0) {
-                    k = bvh_lowest_bit(bits);
-                    bits &= bits - 1;
-                    stack_ref[sp++] = n->child[k];
-                }
-                continue;
-            }
-        } else {
-            float4 b1, b2;
-            const global TriPacket4* p = packets + (cur & ~FEN_LEAF_BIT);
-            const float4 t = tri_packet_intersect(p, r, r->tmax, &b1, &b2);
-            count += (t.s0 < INFINITY) + (t.s1 < INFINITY && p->prim[1] != p->prim[0]) +
-                     (t.s2 < INFINITY && p->prim[2] != p->prim[1]) +
-                     (t.s3 < INFINITY && p->prim[3] != p->prim[2]);
-        }
-        if (sp == 0)
-            return count;
-        cur = stack_ref[--sp];
+    BvhWalk w;
+    bvh_walk_begin(&w);
+    uint count = 0;
+    for (uint leaf; (leaf = bvh_walk_next(&w, nodes, r)) != FEN_INVALID_ID;) {
+        float4 b1, b2;
+        const global TriPacket4* p = packets + leaf;
+        const float4 t = tri_packet_intersect(p, r, r->tmax, &b1, &b2);
+        count += (t.s0 < INFINITY) + (t.s1 < INFINITY && p->prim[1] != p->prim[0]) +
+                 (t.s2 < INFINITY && p->prim[2] != p->prim[1]) +
+                 (t.s3 < INFINITY && p->prim[3] != p->prim[2]);
     }
+    return count;
 }
 
 #endif /* FEN_BVH_TRAVERSE_H */

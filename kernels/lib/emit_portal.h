@@ -3,10 +3,12 @@
  *
  * Per path: the joint table picks the sun or a sky cell (exact probabilities); v is the sun's
  * direction (or in its cone) or sampled in the cell proportionally to g; a portal group is chosen
- * by A_g |v.n_g| among W(v) = sum_g A_g |v.n_g| (eq. 1 at group level), a triangle of it by area,
+ * by A_g |v.n_g| among W(v) = sum_g A_g |v.n_g| (eq. 1 at group level, exact integer shares), a
+ * triangle of it by area,
  * x uniformly on the triangle; the origin is moved back along -v outside the scene's bounding
  * sphere. N(x, v) = portal triangles on the ray's line (counted in the portals' own BVH from that
- * origin, so every crossing has t > 0). Weight: sun E W / P(sun), sky W factor_k sin(theta); then
+ * origin, so every crossing has t > 0). Weight: sun E W / P(sun), sky W factor_k sin(theta)
+ * (W as the exact w_g / P(g) of the group drawn); then
  * divided by N (--portal-overlap weight) or kept with probability 1/N (reject: the path index is
  * spent all the same, so rejected candidates count as emitted paths).
  * Requires bvh_traverse.h (FEN_BVH_WIDTH).
@@ -14,7 +16,7 @@
 #ifndef FEN_EMIT_PORTAL_H
 #define FEN_EMIT_PORTAL_H
 
-#include "lib/emit_uniform.h"
+#include "lib/emit_source.h"
 
 typedef struct {
     const global float4* groups;      /* xyz unit normal, w area (m^2) */
@@ -41,26 +43,45 @@ static inline uint cdf_search_binary(const global ulong* cdf, uint n, uint r)
     return lo;
 }
 
-/* eq. (1): a portal triangle for direction `dir` -- a group by A_g |dir.n_g| (u_group in [0,1)),
-   then a triangle of it by area (32 random bits). *W receives sum_g A_g |dir.n_g|; returns
-   FEN_INVALID_ID when no portal faces the direction at all. */
-static inline uint portal_pick_triangle(const Portals* portals, float3 dir, float u_group, uint r_tri,
-                                        float* W_out)
+/* eq. (1): a portal triangle for direction `dir`. The group is chosen with 32 random bits
+   against integer bounds: group g owns [b_{g-1}, b_g) of [0, 2^32), b_g = 2^32 (w_0 + .. + w_g) / W
+   for w_g = A_g |dir.n_g|, W = sum_g w_g, kept increasing so every group facing dir owns at least
+   one value. Its probability P(g) = (b_g - b_{g-1}) / 2^32 is exact -- a float threshold would be
+   off by up to 2^-24 absolutely, 0.1 % for a group of probability 5e-5. Then a triangle of the
+   group by area, exact likewise. *scale = w_g / P(g), what the weight carries in place of W (the
+   two differ by the bounds' rounding, ~1e-7 relative: the overlap correction below treats every
+   crossing of the line as generated with the same density). FEN_INVALID_ID when nothing faces dir. */
+static inline uint portal_pick_triangle(const Portals* portals, float3 dir, uint r_group, uint r_tri,
+                                        float* scale)
 {
     float W = 0.0f;
-    for (uint g = 0; g < portals->group_count; ++g)
-        W += portals->groups[g].w * fabs(dot(dir, portals->groups[g].xyz));
-    *W_out = W;
-    if (!(W > 0.0f))
-        return FEN_INVALID_ID;
-    const float target = u_group * W;
-    float acc = 0.0f;
-    uint g = 0;
-    for (; g + 1 < portals->group_count; ++g) {
-        acc += portals->groups[g].w * fabs(dot(dir, portals->groups[g].xyz));
-        if (target < acc)
-            break;
+    uint facing = 0;
+    for (uint g = 0; g < portals->group_count; ++g) {
+        const float w = portals->groups[g].w * fabs(dot(dir, portals->groups[g].xyz));
+        W += w;
+        facing += w > 0.0f;
     }
+    if (facing == 0)
+        return FEN_INVALID_ID;
+    const ulong all = 4294967296ul;
+    ulong prev = 0;
+    float cum = 0.0f;
+    uint g = 0, seen = 0;
+    float w = 0.0f;
+    ulong bound = 0;
+    for (; g < portals->group_count; ++g) {
+        w = portals->groups[g].w * fabs(dot(dir, portals->groups[g].xyz));
+        cum += w;
+        if (!(w > 0.0f))
+            continue;
+        ++seen;
+        bound = seen == facing ? all : convert_ulong_rtz(cum / W * 4294967296.0f);
+        bound = clamp(bound, prev + 1ul, all - (ulong)(facing - seen));
+        if ((ulong)r_group < bound)
+            break;
+        prev = bound;
+    }
+    *scale = w / ((float)(bound - prev) * 0x1p-32f);
     const uint first = portals->range[2 * g], count = portals->range[2 * g + 1];
     return first + cdf_search_binary(portals->triangle_cdf + first + g, count, r_tri);
 }
@@ -73,28 +94,17 @@ static inline int emit_portal(const global RenderParams* params, const Sky* sky,
     p->path_lo = (uint)path;
     p->path_hi = (uint)(path >> 32);
     p->depth = 0;
+    p->flags = FEN_PATH_ALIVE;
     const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT);
     const RngBlock bits2 = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT_PORTAL);
-    const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
     const float4 u2 = rng_unit24x4(bits2.y, bits2.z, bits2.w);
 
     const uint entry = cdf_search(sources->cdf, sources->guide, sources->guide_shift, bits.x);
-    float3 dir;
     float3 beta;
-    if (entry == 0) {
-        const float3 axis = params->sun_dir.xyz;
-        dir = params->sun_dir.w < 1.0f ? sample_cone(axis, params->sun_dir.w, u.z, u.w) : axis;
-        beta = params->sun_weight.xyz;
-        p->flags = FEN_PATH_ALIVE | FEN_PATH_FROM_SUN;
-    } else {
-        float w;
-        dir = -sky_sample(sky, entry - 1, u.z, u.w, &w);
-        beta = (float3)(w);
-        p->flags = FEN_PATH_ALIVE;
-    }
-
-    float W;
-    const uint t = portal_pick_triangle(portals, dir, u.x, bits2.x, &W);
+    const float3 dir = source_direction(params, sky, entry, fen_u32_to_unit(bits.z),
+                                        fen_u32_to_unit(bits.w), &beta);
+    float scale;
+    const uint t = portal_pick_triangle(portals, dir, bits.y, bits2.x, &scale);
     if (t == FEN_INVALID_ID)
         return 0;
 
@@ -110,7 +120,7 @@ static inline int emit_portal(const global RenderParams* params, const Sky* sky,
     /* overlap: N(x, v) portal triangles on the line */
     const RayPre r = ray_setup(origin, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
     const uint n = max(bvh_count_hits(portals->nodes, portals->packets, &r), 1u);
-    beta *= W;
+    beta *= scale;
     if (params->portal_overlap == 1u)
         beta /= (float)n;
     else if (params->portal_overlap == 0u && u2.z * (float)n >= 1.0f)

@@ -1,25 +1,16 @@
 /* emit_uniform.h — the `uniform` emission strategy (DESIGN.md §3.1, the paper's "no optimisation").
  *
- * One Philox block per path: its first 32 bits pick an entry of the source table (entry 0 the
- * sun, entry 1 + k sky cell k; exact probabilities, host: emission_setup.h), the other 96 bits
- * give four 24-bit uniforms for the direction inside the sky cell (or the sun's cone) and the
- * origin. Origin: uniform on the disk of radius R orthogonal to the direction that covers the
- * scene's bounding sphere, moved back outside it. The weight is the emitted radiance over the
- * density of (origin, direction): for the sun E pi R^2 / P(sun), for the sky
+ * One Philox block per path: its first 32 bits pick an entry of the source table (the sun or a
+ * sky cell, lib/emit_source.h), the other 96 bits give four 24-bit uniforms for the direction
+ * and the origin. Origin: uniform on the disk of radius R orthogonal to the direction that
+ * covers the scene's bounding sphere, moved back outside it. The weight is the emitted radiance
+ * over the density of (origin, direction): for the sun E pi R^2 / P(sun), for the sky
  * pi R^2 g / p(v) = pi R^2 factor_k sin(theta).
  */
 #ifndef FEN_EMIT_UNIFORM_H
 #define FEN_EMIT_UNIFORM_H
 
-#include "lib/rng.h"
-#include "lib/sky.h"
-#include "shared/fen_render.h"
-
-typedef struct {
-    const global ulong* cdf;   /* 2 + sky cells entries */
-    const global uint* guide;
-    uint guide_shift;
-} SourceTable;
+#include "lib/emit_source.h"
 
 static inline PathState emit_uniform(const global RenderParams* params, const Sky* sky,
                                      const SourceTable* sources, ulong path)
@@ -28,21 +19,14 @@ static inline PathState emit_uniform(const global RenderParams* params, const Sk
     p.path_lo = (uint)path;
     p.path_hi = (uint)(path >> 32);
     p.depth = 0;
+    p.flags = FEN_PATH_ALIVE;
     const RngBlock bits = rng_path_bits(params->seed, p.path_lo, p.path_hi, 0, FEN_RNG_EMIT);
     const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
     const uint entry = cdf_search(sources->cdf, sources->guide, sources->guide_shift, bits.x);
-    float3 dir;
-    if (entry == 0) {
-        const float3 axis = params->sun_dir.xyz;
-        dir = params->sun_dir.w < 1.0f ? sample_cone(axis, params->sun_dir.w, u.z, u.w) : axis;
-        p.beta = params->sun_weight;
-        p.flags = FEN_PATH_ALIVE | FEN_PATH_FROM_SUN;
-    } else {
-        float w;
-        dir = -sky_sample(sky, entry - 1, u.z, u.w, &w);
-        p.beta = (float4)(params->sky_weight.x * w);
-        p.flags = FEN_PATH_ALIVE;
-    }
+    float3 weight;
+    const float3 dir = source_direction(params, sky, entry, u.z, u.w, &weight);
+    if (entry != 0)
+        weight *= params->sky_weight.x;
     const float radius = params->sphere.w;
     float3 t1, t2;
     orthonormal_basis(dir, &t1, &t2);
@@ -50,7 +34,7 @@ static inline PathState emit_uniform(const global RenderParams* params, const Sk
     const float3 origin = params->sphere.xyz + d.x * t1 + d.y * t2 - dir * (1.01f * radius);
     p.org = (float4)(origin, 0.0f);
     p.dir = (float4)(dir, 0.0f);
-    p.beta.w = 0.0f;
+    p.beta = (float4)(weight, 0.0f);
     return p;
 }
 

@@ -22,6 +22,19 @@ typedef struct {
     uint nt, np;
 } Sky;
 
+static inline Sky sky_from(const global float* theta, const global float* phi,
+                          const global float* values, const global float* factor, uint nt, uint np)
+{
+    Sky s;
+    s.theta = theta;
+    s.phi = phi;
+    s.values = values;
+    s.factor = factor;
+    s.nt = nt;
+    s.np = np;
+    return s;
+}
+
 /* Largest i < n-1 with nodes[i] <= x (nodes increasing, n >= 2). */
 static inline uint sky_node_search(const global float* nodes, uint n, float x)
 {

@@ -23,49 +23,29 @@ static inline float3 segment_transmittance(const global BvhNode* nodes,
     return bvh_intersect_any(nodes, packets, r) ? (float3)(0.0f) : (float3)(1.0f);
 #else
     float3 trans = (float3)(1.0f);
-    uint stack_ref[FEN_BVH_STACK_SIZE];
-    int sp = 0;
-    uint cur = 0;
-    float tnear[FEN_BVH_WIDTH];
-    for (;;) {
-        if (!(cur & FEN_LEAF_BIT)) {
-            const global BvhNode* n = nodes + cur;
-            uint bits = bvh_wide_test(n, r, r->tmax, tnear);
-            if (bits != 0) {
-                int k = bvh_lowest_bit(bits);
-                bits &= bits - 1;
-                cur = n->child[k];
-                while (bits != 0) {
-                    k = bvh_lowest_bit(bits);
-                    bits &= bits - 1;
-                    stack_ref[sp++] = n->child[k];
-                }
+    BvhWalk w;
+    bvh_walk_begin(&w);
+    for (uint leaf; (leaf = bvh_walk_next(&w, nodes, r)) != FEN_INVALID_ID;) {
+        float4 b1, b2;
+        const global TriPacket4* p = packets + leaf;
+        const float4 t = tri_packet_intersect(p, r, r->tmax, &b1, &b2);
+        const float tv[4] = {t.s0, t.s1, t.s2, t.s3};
+        uint last = FEN_INVALID_ID;
+        for (int lane = 0; lane < 4; ++lane) {
+            const uint prim = p->prim[lane];
+            if (prim == last)
                 continue;
-            }
-        } else {
-            float4 b1, b2;
-            const global TriPacket4* p = packets + (cur & ~FEN_LEAF_BIT);
-            const float4 t = tri_packet_intersect(p, r, r->tmax, &b1, &b2);
-            const float tv[4] = {t.s0, t.s1, t.s2, t.s3};
-            uint last = FEN_INVALID_ID;
-            for (int lane = 0; lane < 4; ++lane) {
-                const uint prim = p->prim[lane];
-                if (prim == last)
-                    continue;
-                last = prim;
-                if (!(tv[lane] < INFINITY))
-                    continue;
-                const global DevMaterial* m = materials + prim_material[prim];
-                if (!material_is_glass(m))
-                    return (float3)(0.0f);
-                const float cos_i = dot(packet_normal(p, (uint)lane), dir_unit);
-                trans *= m->transmission.xyz * (1.0f - fresnel_dielectric(cos_i, m->transmission.w));
-            }
+            last = prim;
+            if (!(tv[lane] < INFINITY))
+                continue;
+            const global DevMaterial* m = materials + prim_material[prim];
+            if (!material_is_glass(m))
+                return (float3)(0.0f);
+            const float cos_i = dot(packet_normal(p, (uint)lane), dir_unit);
+            trans *= m->transmission.xyz * (1.0f - fresnel_dielectric(cos_i, m->transmission.w));
         }
-        if (sp == 0)
-            return trans;
-        cur = stack_ref[--sp];
     }
+    return trans;
 #endif
 }
 

@@ -1,7 +1,7 @@
 /* fen_bvh.h — device layout of the scene's acceleration structure and of rays and hits.
  *
  * One declaration for host and device (see fen_types.h). The host builds a binary SAH tree
- * (bvh/bvh_build.cpp), collapses it to 2, 4 or 8 children per node (bvh/bvh_wide.cpp) and
+ * (bvh/bvh_build.cpp), collapses it to 2, 4 or 8 children per node (bvh/bvh_flat.cpp) and
  * stores it in these rows; the traversal kernels (kernels/lib/bvh_traverse_*.h) read them.
  * Invariants:
  *   - node 0 is the root and is always an inner node (an empty scene has a root whose child

@@ -2,7 +2,7 @@
  *
  * FEN_SHARED_LAYOUT(X) expands X(struct, member) for each struct and the members whose offsets
  * matter. kernels/test_probes.cl writes sizeof/offsetof as the device compiler sees them;
- * tests/kernels/layout_test.cpp compares with the host compiler. A struct added to a shared header
+ * tests/kernels/probes_test.cpp compares with the host compiler. A struct added to a shared header
  * is added here too.
  */
 #ifndef FEN_LAYOUT_H

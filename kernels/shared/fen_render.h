@@ -19,7 +19,6 @@
 
 /* PathState.flags */
 #define FEN_PATH_ALIVE 1u
-#define FEN_PATH_FROM_SUN 2u
 
 /* Counters (fen_u64 each), read back after every iteration. */
 #define FEN_CTR_NEXT_PATH 0        /* next path index to emit (the emit kernel's ticket) */
@@ -31,7 +30,8 @@
 #define FEN_CTR_OVERFLOWS 6        /* contributions beyond the 128-bit range: must stay 0 */
 #define FEN_CTR_MAX_DEPTH 7        /* paths cut by --max-bounces (bias, reported) */
 #define FEN_CTR_EMITTED 8          /* paths that started (a rejected portal candidate does not) */
-#define FEN_CTR_COUNT 9
+#define FEN_CTR_CAMERA_GLASS_CUT 9 /* camera samples stopped after 16 glass sheets (bias, reported) */
+#define FEN_CTR_COUNT 10
 
 FEN_NS_BEGIN
 
@@ -93,7 +93,7 @@ typedef struct {
     fen_u32 max_depth;
     fen_u32 source_guide_shift; /* the source table's guide has 2^(32 - shift) entries */
     fen_f32 fixed_scale;     /* pixel accumulators hold round(value * fixed_scale), 128-bit */
-    fen_u32 sky_cells;       /* number of goniogram cells (0: no sky) */
+    fen_u32 pad0;
     fen_u32 sky_theta_nodes;
     fen_u32 sky_phi_nodes;
     fen_u32 pool_size;

@@ -4,7 +4,7 @@
  * a keyed bijection of a 128-bit counter. A light path draws its numbers from the counter
  * (path index, iteration, bounce, dimension block) under the key (seed), so a render does not
  * depend on thread scheduling or work-group size (DESIGN.md §4). Integer-only: host and device
- * streams match bit for bit (tests/kernels/rng_test.cpp checks it).
+ * streams match bit for bit (tests/kernels/probes_test.cpp checks it).
  */
 #ifndef FEN_RNG_H
 #define FEN_RNG_H

@@ -7,7 +7,7 @@
  *     because OpenCL's float3 is 16 bytes and glm::vec3 is 12.
  *   - no bool, size_t, long, enum or pointer members; 64-bit values are fen_u64.
  * Sizes and offsets are asserted with FEN_ASSERT_SIZE / FEN_ASSERT_OFFSET on both sides, and a
- * layout kernel compares them on every device at test time (tests/kernels/layout_test.cpp).
+ * layout kernel compares them on every device at test time (tests/kernels/probes_test.cpp).
  */
 #ifndef FEN_TYPES_H
 #define FEN_TYPES_H

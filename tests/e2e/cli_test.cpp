@@ -151,6 +151,32 @@ TEST(CliRender, WritesExrPngAndJson)
     EXPECT_EQ(j2["rel_mse"].get<double>(), 0.0);
 }
 
+TEST(CliRender, TimeBudgetAndPortalsFromTheCommandLine)
+{
+    const std::string dir = test::tempDir("cli-render-time");
+    // --time: a calibration, then at least two equal batches within about the budget
+    const CliRun t = run("render " + std::string(FEN_SCENES_DIR) + "/room.gltf --out " + dir +
+                         "/t.exr --time 3 --width 64 --no-progress");
+    ASSERT_EQ(t.status, 0) << t.err;
+    const auto jt = nlohmann::json::parse(slurp(dir + "/t.json"));
+    EXPECT_GE(jt["batches"].get<int>(), 2);
+    EXPECT_LT(jt["seconds"]["render"].get<double>() + jt["seconds"]["calibration"].get<double>(), 4.5);
+    EXPECT_EQ(jt["paths"].get<std::uint64_t>(), jt["paths_per_batch"].get<std::uint64_t>() * jt["batches"].get<std::uint64_t>());
+    // portals: the scene's marking (window + door frame) and an override
+    const CliRun p = run("render " + std::string(FEN_SCENES_DIR) + "/inner_room.gltf --out " + dir +
+                         "/p.exr --method portal --paths 100000 --width 64 --no-progress");
+    ASSERT_EQ(p.status, 0) << p.err;
+    const auto jp = nlohmann::json::parse(slurp(dir + "/p.json"));
+    EXPECT_EQ(jp["method"], "portal");
+    EXPECT_EQ(jp["emission"]["portal_nodes"], nlohmann::json({"window", "door_frame"}));
+    EXPECT_GT(jp["emission"]["sun_flux_lm"].get<double>(), 0.0);
+    const CliRun g = run("render " + std::string(FEN_SCENES_DIR) + "/inner_room.gltf --out " + dir +
+                         "/g.exr --method portal --portals gap --paths 100000 --width 64 --no-progress");
+    ASSERT_EQ(g.status, 0) << g.err;
+    EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/g.json"))["emission"]["portal_nodes"],
+              nlohmann::json({"gap"}));
+}
+
 TEST(CliRender, BadInputIsOneLineNamingTheProblem)
 {
     const std::string dir = test::tempDir("cli-render-bad");
@@ -200,6 +226,18 @@ TEST(CliRender, BadInputIsOneLineNamingTheProblem)
     expectError(run("render " + good + " --out " + dir + "/o.exr --no-progress --reference /no/ref.exr --paths 10"),
                 1, "/no/ref.exr");
     expectError(run("render " + good + out + " --width -3"), 1, "--width");
+    expectError(run("render " + good + out + " --camera-spp 5000"), 1, "--camera-spp");
+    const std::string upward = variant("upward", [](test::GltfWriter& w) {
+        w.doc()["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "directional"}, {"intensity", 5}}};
+        w.doc()["nodes"].push_back({{"name", "sun"}, {"rotation", {0.7071067811865476, 0, 0, 0.7071067811865476}},
+                                   {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+        w.doc()["scenes"][0]["nodes"].push_back(w.doc()["nodes"].size() - 1);
+    });
+    expectError(run("render " + upward + out), 1, "below the horizon");
+    const std::string huge = variant("huge", [](test::GltfWriter& w) {
+        w.doc()["scenes"][0]["extras"]["sky"]["luminance"] = 1e35;
+    });
+    expectError(run("render " + huge + out), 1, "extras.sky.luminance");
     expectError(run("render " + good + out + " --method sideways"), 1, "--method");
     expectError(run("render " + good + out + " --method portal"), 1, "no portals");
     expectError(run("render " + good + out + " --method portal --portals nope"), 1, "'nope'");

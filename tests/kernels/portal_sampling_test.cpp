@@ -13,6 +13,7 @@
 #include "support/cl_fixture.h"
 #include "support/render_support.h"
 #include "support/statistics.h"
+#include "support/test_scenes.h"
 #include "trace/device_bvh.h"
 
 namespace fen {
@@ -214,6 +215,42 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
     EXPECT_NEAR(ms.mean, flux, 4.0 * ms.se) << "relative se " << ms.se / ms.mean;
     EXPECT_NEAR(pe.sunFlux_lm + pe.skyFlux_lm, flux, 1e-3 * flux);
     EXPECT_LT(ms.se / ms.mean, 3e-3);
+}
+
+TEST(PortalSampling, OverlapCountsEveryPortalOnTheLine)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // N(x, v): three stacked panes; a pane listed twice (two identical triangles: both count);
+    // a single triangle alone in a leaf (its packet's padding lanes repeat it: counts once).
+    std::vector<Triangle> tris;
+    for (float z : {0.0f, 0.5f, 1.0f})
+        for (const auto& t : rect({0, 0, z}, {1, 0, 0}, {0, 1, 0}))
+            tris.push_back(t);
+    const Triangle twin{{3, 0, 0}, {4, 0, 0}, {3, 1, 0}};
+    tris.push_back(twin);
+    tris.push_back(twin);
+    tris.push_back({{10, 0, 0}, {11, 0, 0}, {10, 1, 0}});
+    const FlatBvh bvh = flattenBvh(buildBinnedSah(tris), tris, 8);
+    DeviceBvh dev(*ctx, bvh);
+    const std::vector<dev::Ray> rays = {
+        test::toDevice(test::refRay({0.3f, 0.2f, -5}, {0, 0, 1})),            // all three panes
+        test::toDevice(test::refRay({0.3f, 0.2f, 0.75f}, {0, 0, 1})),         // the last one only
+        test::toDevice(test::refRay({3.2f, 0.2f, -5}, {0, 0, 1})),            // the twins
+        test::toDevice(test::refRay({10.2f, 0.2f, -5}, {0, 0, 1})),           // the lone triangle
+        test::toDevice(test::refRay({5, 5, -5}, {0, 0, 1})),                  // nothing
+        test::toDevice(test::refRay({0.3f, 0.2f, -5}, {0.01f, 0.02f, 1})),    // slanted, three
+    };
+    const std::vector<std::uint32_t> expect = {3, 1, 2, 1, 0, 3};
+    const auto n = static_cast<std::uint32_t>(rays.size());
+    cl::Kernel k(ctx->program("test_portal_probes.cl", {"FEN_BVH_WIDTH=8"}), "count_probe");
+    cl::Buffer rb = ctx->buffer(CL_MEM_READ_ONLY, n * sizeof(dev::Ray), "rays", rays.data());
+    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 4, "counts");
+    ocl::setKernelArgs(k, dev.nodes(), dev.packets(), rb, out, n);
+    ocl::launch(*ctx, k, "count_probe", n);
+    std::vector<std::uint32_t> got(n);
+    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, n * 4, got.data());
+    for (std::uint32_t i = 0; i < n; ++i)
+        EXPECT_EQ(got[i], expect[i]) << "ray " << i;
 }
 
 }  // namespace

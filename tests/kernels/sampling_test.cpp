@@ -141,6 +141,44 @@ TEST(Sampling, IntegerCdfChoosesWithExactProbabilities)
     EXPECT_GT(test::chiSquarePValue(obs, exp), kMinP);
 }
 
+TEST(Sampling, IntegerCdfBoundariesExactly)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Deterministic: the first and last value of every entry, and every guide bucket's start --
+    // an off-by-one there has probability 2^-32 per draw, invisible to a statistical test.
+    const std::vector<double> w = {5, 0, 1, 1e-12, 0, 30, 2, 2, 0, 7, 1e-9, 3};
+    const IntegerCdf t = makeIntegerCdf(w);
+    std::vector<std::uint32_t> r, expect;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+        if (t.cdf[i + 1] == t.cdf[i])
+            continue;
+        r.push_back(static_cast<std::uint32_t>(t.cdf[i]));
+        expect.push_back(static_cast<std::uint32_t>(i));
+        r.push_back(static_cast<std::uint32_t>(t.cdf[i + 1] - 1));
+        expect.push_back(static_cast<std::uint32_t>(i));
+    }
+    for (std::size_t b = 0; b < t.guide.size(); ++b) {
+        const std::uint64_t v = static_cast<std::uint64_t>(b) << t.guideShift;
+        r.push_back(static_cast<std::uint32_t>(v));
+        std::size_t i = 0;
+        while (!(t.cdf[i] <= v && v < t.cdf[i + 1]))
+            ++i;
+        expect.push_back(static_cast<std::uint32_t>(i));
+    }
+    const auto n = static_cast<std::uint32_t>(r.size());
+    cl::Kernel k(ctx->program("test_probes.cl"), "cdf_probe_at");
+    cl::Buffer cb = ctx->buffer(CL_MEM_READ_ONLY, t.cdf.size() * 8, "cdf", t.cdf.data());
+    cl::Buffer gb = ctx->buffer(CL_MEM_READ_ONLY, t.guide.size() * 4, "guide", t.guide.data());
+    cl::Buffer rb = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "values", r.data());
+    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 4, "entries");
+    ocl::setKernelArgs(k, cb, gb, t.guideShift, rb, out, n);
+    ocl::launch(*ctx, k, "cdf_probe_at", n);
+    std::vector<std::uint32_t> got(n);
+    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, n * 4, got.data());
+    for (std::uint32_t i = 0; i < n; ++i)
+        EXPECT_EQ(got[i], expect[i]) << "r = " << r[i];
+}
+
 struct SkyRun {
     std::vector<cl_float4> dirWeight;
     std::vector<float> lum;

@@ -154,14 +154,28 @@ TEST(Stages, SplatFormulaAndSideRule)
         const double sy = glm::dot(x - cam.position, cam.up) / (glm::dot(x - cam.position, cam.forward) * tanY);
         const int px = int((sx + 1) / 2 * W), py = int((1 - sy) / 2 * H);
         EXPECT_EQ(asUint(c.org.w), std::uint32_t(py * W + px));
-        // Nothing blocks it, so the pixel received exactly the contribution (fixed point).
         ++checked;
     }
     EXPECT_GT(checked, 100);
-    std::uint64_t splatted = 0;
-    for (auto v : out.accum)
-        splatted += v > 0;
-    EXPECT_GT(splatted, 0u);
+    // Nothing blocks them, so every pixel holds exactly the sum of its contributions in fixed
+    // point (scale 1024, each rounded to the nearest unit).
+    std::vector<double> expectSum(std::size_t(W) * H * 3, 0.0), count(std::size_t(W) * H, 0.0);
+    for (const auto& c : out.connections) {
+        const std::uint32_t px = asUint(c.org.w);
+        if (px == FEN_INVALID_ID)
+            continue;
+        expectSum[3 * px] += c.value.x * 1024.0;
+        expectSum[3 * px + 1] += c.value.y * 1024.0;
+        expectSum[3 * px + 2] += c.value.z * 1024.0;
+        count[px] += 1.0;
+    }
+    for (std::size_t px = 0; px < count.size(); ++px)
+        for (int ch = 0; ch < 3; ++ch) {
+            EXPECT_EQ(out.accum[6 * px + 2 * ch + 1], 0u);
+            EXPECT_NEAR(double(out.accum[6 * px + 2 * ch]), expectSum[3 * px + ch],
+                        0.5 * count[px] + 1e-6 * expectSum[3 * px + ch])
+                << "pixel " << px << " channel " << ch;
+        }
     EXPECT_EQ(out.counters[FEN_CTR_SHADOW_RAYS], std::uint64_t(checked));
 }
 

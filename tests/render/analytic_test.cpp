@@ -59,6 +59,23 @@ TEST(Analytic, LambertianPlaneUnderTheSun)
     expectMean(t.result, 0, Y(rho) * E * std::sin(h * M_PI / 180) / M_PI, 0.005, "sun on plane");
 }
 
+TEST(Analytic, LambertianPlaneUnderASunDisk)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // A sun of angular radius 10 deg (the largest allowed) still gives the plane its normal
+    // illuminance times sin(h): directions spread over the disk, not the illuminance.
+    test::SceneBuilder b;
+    const glm::vec3 rho(0.5f);
+    b.add("plane", rect({-1, 0, -1}, {2, 0, 0}, {0, 0, 2}), b.material("m", rho));
+    const double h = 50.0, E = 10000.0;
+    b.sun(h, 120.0, E, 10.0);
+    b.camera({0, 3, 0}, {0, 0, 0}, {0, 0, -1}, 30.0);
+    const int W = 64, H = 48;
+    const auto t = test::renderScene(*ctx, b.build(), W, H, 4u << 20, {centre(W, H)});
+    expectClean(t.result);
+    expectMean(t.result, 0, 0.5 * E * std::sin(h * M_PI / 180) / M_PI, 0.005, "sun disk on plane");
+}
+
 TEST(Analytic, LambertianPlaneUnderUniformSky)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);

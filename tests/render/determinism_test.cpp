@@ -1,5 +1,5 @@
 // determinism_test.cpp — the same seed, scene, settings and device give a bit-identical image
-// (counter-based random numbers + 64-bit fixed-point accumulation); another seed does not.
+// (counter-based random numbers + 128-bit fixed-point accumulation); another seed does not.
 #include <gtest/gtest.h>
 
 #include <cstring>

@@ -19,7 +19,7 @@ namespace {
 
 using test::rect;
 
-enum class Windows { One, Two, InLine, Frame };
+enum class Windows { One, Two, InLine, Frame, DeepFrame };
 
 // A closed 3 x 2.5 x 3 m room lit only through its windows: a south window (1 x 1 m), optionally
 // an east one, a second pane 30 cm outside the first, or an open hole marked by its frame. Nothing
@@ -52,7 +52,15 @@ Scene windowRoom(Windows w)
         put(rect({X, 0, 0}, {0, 0, Z}, {0, Y, 0}));
     }
     b.add("shell", shell, wall);
-    if (w == Windows::Frame) {
+    if (w == Windows::DeepFrame) {
+        // an open hole with 20 cm deep reveals (sill, head, jambs) outside the wall: the frame's
+        // hull is a box, a non-planar hull whose surface light is emitted through
+        std::vector<Triangle> frame;
+        for (const auto& r : {rect({1, 1, Z}, {1, 0, 0}, {0, 0, 0.2f}), rect({1, 2, Z}, {1, 0, 0}, {0, 0, 0.2f}),
+                              rect({1, 1, Z}, {0, 1, 0}, {0, 0, 0.2f}), rect({2, 1, Z}, {0, 1, 0}, {0, 0, 0.2f})})
+            frame.insert(frame.end(), r.begin(), r.end());
+        b.add("frame", frame, wall, PortalMark::Hull);
+    } else if (w == Windows::Frame) {
         // an open hole; its frame: four 2 cm reveals around it in the wall plane
         std::vector<Triangle> frame;
         for (const auto& r : {rect({0.98f, 0.98f, Z}, {1.04f, 0, 0}, {0, 0.02f, 0}),
@@ -138,12 +146,15 @@ std::string roomName(const ::testing::TestParamInfo<Windows>& info)
         return "PanesInLine";
     case Windows::Frame:
         return "OpeningByFrame";
+    case Windows::DeepFrame:
+        return "OpeningByDeepFrame";
     }
     return "Unknown";
 }
 
 INSTANTIATE_TEST_SUITE_P(Rooms, PortalUnbiased,
-                         ::testing::Values(Windows::One, Windows::Two, Windows::InLine, Windows::Frame),
+                         ::testing::Values(Windows::One, Windows::Two, Windows::InLine, Windows::Frame,
+                                           Windows::DeepFrame),
                          roomName);
 
 TEST(PortalOverlap, CorrectionMattersAndBothFixesAgree)

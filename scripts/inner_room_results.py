@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""inner_room_results.py — regenerates docs/results/inner_room.md: equal-time renders of the inner
+room (the paper's Table 1) with uniform emission, portals on the window and the door, and the
+wrong portal on the gap under the inner door, each against a long reference render.
+
+Run from the repository root after building (`scripts/setup.sh`):
+
+    python3 scripts/inner_room_results.py [--seconds 120] [--reference-seconds 1800]
+
+Standard library only. Renders go to out/inner_room/; the table to docs/results/inner_room.md.
+The reference uses portals on the window and the door (unbiased here: all light enters through
+them; tested in tests/render/portal_test.cpp) with another seed, so its noise is independent.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+ROI = "280,160,520,360"  # right of the door: the partition wall and floor lit through the gap
+SCENE = "scenes/inner_room.gltf"
+OUT = "out/inner_room"
+PAPER = {  # Table 1 of the paper: mean / RMS luminance in the rectangle, cd/m^2
+    "uniform": (57.1, 30.3),
+    "portal (window + door)": (57.7, 11.7),
+    "portal (gap)": (10.0, 1.36),
+}
+
+
+def render(name, args, seconds, seed, reference=None):
+    out = os.path.join(OUT, name + ".exr")
+    cmd = ["build/fenestra", "render", SCENE, "--out", out, "--time", str(seconds), "--seed",
+           str(seed), "--roi", ROI, "--no-progress"] + args
+    if reference:
+        cmd += ["--reference", reference]
+    print("$", " ".join(cmd), flush=True)
+    subprocess.run(cmd, check=True)
+    with open(os.path.join(OUT, name + ".json")) as f:
+        return json.load(f)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--seconds", type=float, default=120.0)
+    ap.add_argument("--reference-seconds", type=float, default=1800.0)
+    a = ap.parse_args()
+    os.makedirs(OUT, exist_ok=True)
+    ref = render("reference", ["--method", "portal"], a.reference_seconds, 1000)
+    ref_exr = os.path.join(OUT, "reference.exr")
+    runs = [
+        ("uniform", "uniform", []),
+        ("portal (window + door)", "portal_window_door", ["--method", "portal"]),
+        ("portal (gap)", "portal_gap", ["--method", "portal", "--portals", "gap"]),
+    ]
+    rows = []
+    for label, name, args in runs:
+        j = render(name, args, a.seconds, 1, ref_exr)
+        rows.append((label, j))
+
+    u_noise = rows[0][1]["noise_std_err_cd_m2"]
+    lines = []
+    lines.append("# Inner room: uniform vs portals, equal time\n")
+    lines.append("The paper's Table 1 scene (`scenes/inner_room.gltf`, see `scenes/README.md`): an "
+                 "inner room lit only through a 5 cm gap under its closed door, from an outer room "
+                 "with a large window and an open door. Each method renders for the same time; "
+                 "statistics over the rectangle x %s (640 x 480 image), luminance in cd/m².\n"
+                 % ROI.replace(",", ", "))
+    lines.append("Regenerate: `python3 scripts/inner_room_results.py --seconds %g "
+                 "--reference-seconds %g` (after `scripts/setup.sh`).\n" % (a.seconds, a.reference_seconds))
+    lines.append("| method | paths | mean | ± (mean's s.e.) | RMS (paper's) | noise (batch s.e./pixel) | "
+                 "RMSE vs reference | rel. MSE | noise vs uniform | paper: mean / RMS |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|")
+    for label, j in rows:
+        pm, pr = PAPER[label]
+        lines.append("| %s | %.3gM | %.4g | %.2g | %.4g | %.4g | %.4g | %.3g | %.2fx less | %s / %s |" % (
+            label, j["paths"] / 1e6, j["mean_luminance_cd_m2"], j["mean_std_err_cd_m2"],
+            j["rms_luminance_cd_m2"], j["noise_std_err_cd_m2"], j["rmse_cd_m2"], j["rel_mse"],
+            u_noise / j["noise_std_err_cd_m2"], pm, pr))
+    lines.append("")
+    lines.append("Reference: portals on the window and the door, %.0f s, %.3gM paths, seed 1000; "
+                 "its own mean in the rectangle %.4g ± %.2g cd/m², its noise %.3g cd/m² per pixel "
+                 "(part of every RMSE above)." % (
+                     ref["seconds"]["render"], ref["paths"] / 1e6, ref["mean_luminance_cd_m2"],
+                     ref["mean_std_err_cd_m2"], ref["noise_std_err_cd_m2"]))
+    lines.append("")
+    u, w, g = rows[0][1], rows[1][1], rows[2][1]
+    lines.append("## What it shows\n")
+    lines.append("- **Portals on the window and the door** agree with uniform emission (means %.4g ± %.2g "
+                 "and %.4g ± %.2g) at %.1fx less noise per pixel in the same time (the issue asks "
+                 "for at least 2.5x; the paper saw 2.6x in RMS) and %.1fx less RMSE against the "
+                 "reference." % (w["mean_luminance_cd_m2"], w["mean_std_err_cd_m2"],
+                                 u["mean_luminance_cd_m2"], u["mean_std_err_cd_m2"],
+                                 u["noise_std_err_cd_m2"] / w["noise_std_err_cd_m2"],
+                                 u["rmse_cd_m2"] / w["rmse_cd_m2"]))
+    lines.append("- **The portal on the gap** is %.1fx too dark (the paper: 5.7x): the light that "
+                 "reaches the inner room first bounces in the outer room, and emitting through the "
+                 "gap only sends the sky and sun that pass through the gap in a straight line. Its "
+                 "noise is tiny, which is exactly what makes the failure dangerous: a smooth, wrong "
+                 "image. The RMSE column exposes it; the noise column alone would not."
+                 % (w["mean_luminance_cd_m2"] / g["mean_luminance_cd_m2"]))
+    lines.append("- Absolute luminances differ from the paper's (its scene's sizes and light are not "
+                 "published); the ratios are the comparison.")
+    lines.append("")
+    lines.append("Machine: %s (2 cores of the CI kind), %g s per method, renders in `out/inner_room/`."
+                 % (w["device"], a.seconds))
+    lines.append("")
+    os.makedirs("docs/results", exist_ok=True)
+    with open("docs/results/inner_room.md", "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
