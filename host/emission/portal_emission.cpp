@@ -1,8 +1,10 @@
 // portal_emission.cpp — eqs. (1)-(2) tables for portal emission (portal_emission.h).
 #include "emission/portal_emission.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "sky/goniogram.h"
 #include "util/error.h"
@@ -23,13 +25,50 @@ PortalOverlap parsePortalOverlap(const std::string& s)
 namespace {
 
 // sum_g A_g ∫_cell |v.n_g| g dv for cell (i, j): exact where no portal plane cuts the cell
-// (A_g |F_ij . n_g|), converged where one does (Goniogram::cellClippedIntegral).
+// (A_g |F_ij . n_g|); where one does, an 8 x 8 midpoint sum (within ~1e-3 of the integral: these
+// weights set probabilities, so the sum's error costs a little variance, never bias). The cell's
+// corners, flux vector F and arc bound are computed once, and each plane tested with dot
+// products: w . n moves by less than the arc length inside the cell, so corners all farther than
+// that from 0 prove the plane misses it (the bound of goniogram.cpp); the midpoint lattice is made
+// once per cut cell and shared by every plane that cuts it. Measured: 400 portal triangles in 200
+// planes on a CIE type 14 grid (43k cells) went from 2.5 s to 0.2-0.3 s.
 double cellPortalWeight(const Goniogram& g, const PortalSet& portals, std::size_t i, std::size_t j)
 {
+    const double t0 = g.theta()[i], t1 = g.theta()[i + 1], p0 = g.phi()[j], p1 = g.phi()[j + 1];
+    const glm::dvec3 corner[4] = {skyDirection(t0, p0), skyDirection(t0, p1), skyDirection(t1, p0),
+                                  skyDirection(t1, p1)};
+    const double arc = (t1 - t0) + std::sin(t1) * (p1 - p0);
+    const glm::dvec3 F = g.cellDirectionIntegral(i, j);
+    constexpr int m = 8;
+    std::array<glm::dvec3, m * m> dir;
+    std::array<double, m * m> weight;
+    bool lattice = false;
     double total = 0.0;
-    for (const PortalGroup& grp : portals.groups)
-        total += grp.area_m2 * (g.cellClippedIntegral(i, j, grp.normal) +
-                                g.cellClippedIntegral(i, j, -grp.normal));
+    for (const PortalGroup& grp : portals.groups) {
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const auto& c : corner) {
+            const double d = glm::dot(c, grp.normal);
+            lo = std::min(lo, d);
+            hi = std::max(hi, d);
+        }
+        if (lo - arc >= 0.0 || hi + arc <= 0.0) {
+            total += grp.area_m2 * std::fabs(glm::dot(F, grp.normal));
+            continue;
+        }
+        if (!lattice) {
+            for (int a = 0; a < m; ++a)
+                for (int b = 0; b < m; ++b) {
+                    const double th = t0 + (t1 - t0) * (a + 0.5) / m, ph = p0 + (p1 - p0) * (b + 0.5) / m;
+                    dir[a * m + b] = skyDirection(th, ph);
+                    weight[a * m + b] = g.eval(th, ph) * std::sin(th) * (t1 - t0) * (p1 - p0) / (m * m);
+                }
+            lattice = true;
+        }
+        double sum = 0.0;
+        for (int k = 0; k < m * m; ++k)
+            sum += std::fabs(glm::dot(dir[k], grp.normal)) * weight[k];
+        total += grp.area_m2 * sum;
+    }
     return total;
 }
 

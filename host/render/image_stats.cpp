@@ -46,7 +46,7 @@ RoiStats roiStats(const Image& image, const std::vector<double>& stdErr, const I
             const std::size_t p = static_cast<std::size_t>(y) * image.width + x;
             sum += image.luminance(p);
             if (!stdErr.empty())
-                se += stdErr[p];
+                se += stdErr[p] * stdErr[p];
             if (reference) {
                 const double d = image.luminance(p) - reference->luminance(p);
                 const double r = reference->luminance(p);
@@ -64,7 +64,7 @@ RoiStats roiStats(const Image& image, const std::vector<double>& stdErr, const I
             var += d * d;
         }
     s.rmsLuminance_cd_m2 = std::sqrt(var / n);
-    s.noiseStdErr_cd_m2 = se / n;
+    s.noiseStdErr_cd_m2 = std::sqrt(se / n);
     if (reference) {
         s.rmse_cd_m2 = std::sqrt(sq / n);
         s.relMse = rel / n;

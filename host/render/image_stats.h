@@ -24,7 +24,11 @@ struct RoiStats {
     std::size_t pixels = 0;
     double meanLuminance_cd_m2 = 0.0;
     double rmsLuminance_cd_m2 = 0.0;    // sqrt(mean((Y - mean)^2)) over the ROI's pixels
-    double noiseStdErr_cd_m2 = 0.0;     // mean over the ROI of each pixel's standard error
+    // sqrt of the mean over the ROI of each pixel's squared standard error: mean(SE^2) estimates
+    // the mean per-pixel variance without bias, so this estimates the RMSE against the true image.
+    // (A plain mean of SE fails where contributions are sparse: a pixel hit in one batch of 16
+    // gets SE about equal to its value, whatever the method -- measured on the inner room.)
+    double noiseStdErr_cd_m2 = 0.0;
     std::optional<double> rmse_cd_m2;   // vs reference: sqrt(mean((Y - Yref)^2))
     std::optional<double> relMse;       // vs reference: mean((Y - Yref)^2 / (Yref^2 + 0.01))
 };

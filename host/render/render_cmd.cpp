@@ -111,7 +111,13 @@ int runRender(const RenderOptions& opt)
 
     const std::string pngPath = withExtension(opt.outPath, ".png");
     const std::string jsonPath = withExtension(opt.outPath, ".json");
+    const std::string noisePath = withExtension(opt.outPath, ".noise.exr");
     writeExr(opt.outPath, r.image);
+    // Each pixel's standard error of luminance (from its batches), grey: the error without a reference.
+    Image noise(width, height);
+    for (std::size_t p = 0; p < noise.pixels(); ++p)
+        noise.rgb[3 * p] = noise.rgb[3 * p + 1] = noise.rgb[3 * p + 2] = static_cast<float>(r.stdErrLuminance[p]);
+    writeExr(noisePath, noise);
     const double exposure = writePngPreview(pngPath, r.image, st.meanLuminance_cd_m2, opt.exposure);
     const double totalSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -174,7 +180,7 @@ int runRender(const RenderOptions& opt)
     for (const auto& [name, e] : r.kernels)
         j["kernels"][name] = {{"launches", e.launches}, {"device_seconds", e.deviceSeconds}};
     j["png_exposure"] = exposure;
-    j["outputs"] = {{"exr", opt.outPath}, {"png", pngPath}, {"json", jsonPath}};
+    j["outputs"] = {{"exr", opt.outPath}, {"png", pngPath}, {"json", jsonPath}, {"noise_exr", noisePath}};
     {
         std::ofstream f(jsonPath);
         if (!f)
@@ -190,7 +196,7 @@ int runRender(const RenderOptions& opt)
                 r.roiMeanStdErr(0), st.rmsLuminance_cd_m2, st.noiseStdErr_cd_m2);
     if (st.rmse_cd_m2)
         std::printf(", RMSE %.4g, relMSE %.4g", *st.rmse_cd_m2, *st.relMse);
-    std::printf("\nalso wrote %s and %s\n", pngPath.c_str(), jsonPath.c_str());
+    std::printf("\nalso wrote %s, %s and %s\n", pngPath.c_str(), jsonPath.c_str(), noisePath.c_str());
     if (r.badContributions || r.overflows)
         std::fprintf(stderr,
                      "fenestra: warning: %llu non-finite contributions and %llu fixed-point "

@@ -131,7 +131,7 @@ TEST(CliRender, WritesExrPngAndJson)
     // The output folder does not exist yet: it is created (a fresh clone has no out/).
     const CliRun r = run("render " + scene + " --out " + dir + "/new/out.exr --paths 200000 --width 40 --no-progress");
     ASSERT_EQ(r.status, 0) << r.err;
-    for (const char* f : {"/new/out.exr", "/new/out.png", "/new/out.json"})
+    for (const char* f : {"/new/out.exr", "/new/out.png", "/new/out.json", "/new/out.noise.exr"})
         EXPECT_FALSE(slurp(dir + f).empty()) << f;
     const auto j = nlohmann::json::parse(slurp(dir + "/new/out.json"));
     EXPECT_EQ(j["width"], 40);
