@@ -13,8 +13,7 @@
 kernel void emit_paths(global const RenderParams* params, volatile global ulong* counters,
                        global PathState* paths, global const float* sky_theta,
                        global const float* sky_phi, global const float* sky_values,
-                       global const float* sky_factor, global const ulong* source_cdf,
-                       global const uint* source_guide)
+                       global const float* sky_factor, global const uint* source_alias)
 {
     local uint group_count;
     local ulong group_base;
@@ -27,6 +26,6 @@ kernel void emit_paths(global const RenderParams* params, volatile global ulong*
         return;
     const Sky sky = sky_from(sky_theta, sky_phi, sky_values, sky_factor, params->sky_theta_nodes,
                              params->sky_phi_nodes);
-    const SourceTable sources = source_table(source_cdf, source_guide, params->source_guide_shift);
+    const SourceTable sources = source_table(source_alias, params->source_alias_shift);
     paths[i] = emit_uniform(params, &sky, &sources, path);
 }

@@ -10,8 +10,7 @@
 kernel void emit_portal_paths(global const RenderParams* params, volatile global ulong* counters,
                               global PathState* paths, global const float* sky_theta,
                               global const float* sky_phi, global const float* sky_values,
-                              global const float* sky_factor, global const ulong* source_cdf,
-                              global const uint* source_guide, global const float4* portal_groups,
+                              global const float* sky_factor, global const uint* source_alias, global const float4* portal_groups,
                               global const uint* portal_range, global const ulong* portal_cdf,
                               global const float4* portal_vertices,
                               global const BvhNode* portal_nodes,
@@ -26,15 +25,10 @@ kernel void emit_portal_paths(global const RenderParams* params, volatile global
     if (dead && path < params->path_end) {
         const Sky sky = sky_from(sky_theta, sky_phi, sky_values, sky_factor,
                                  params->sky_theta_nodes, params->sky_phi_nodes);
-        const SourceTable sources = source_table(source_cdf, source_guide, params->source_guide_shift);
-        Portals portals;
-        portals.groups = portal_groups;
-        portals.range = portal_range;
-        portals.triangle_cdf = portal_cdf;
-        portals.vertices = portal_vertices;
-        portals.nodes = portal_nodes;
-        portals.packets = portal_packets;
-        portals.group_count = params->portal_groups;
+        const SourceTable sources = source_table(source_alias, params->source_alias_shift);
+        const Portals portals =
+            portals_from(portal_groups, portal_range, portal_cdf, portal_vertices, portal_nodes,
+                         portal_packets, params->portal_groups);
         PathState p;
         emitted = emit_portal(params, &sky, &sources, &portals, path, &p);
         if (emitted)

@@ -12,11 +12,8 @@ kernel void portal_pick_probe(global const float4* groups, global const uint* ra
     const uint i = get_global_id(0);
     if (i >= n)
         return;
-    Portals p;
-    p.groups = groups;
-    p.range = range;
-    p.triangle_cdf = triangle_cdf;
-    p.group_count = group_count;
+    /* choosing a triangle reads neither the vertices nor the BVH */
+    const Portals p = portals_from(groups, range, triangle_cdf, 0, 0, 0, group_count);
     const RngBlock bits = rng_bits(seed, 0x13579bdu, i, 0, 0, 0);
     float scale;
     out[i] = portal_pick_triangle(&p, dir.xyz, bits.y, bits.x, &scale);
@@ -26,8 +23,7 @@ kernel void portal_pick_probe(global const float4* groups, global const uint* ra
    strategy: what the emission kernel would put in the pool. */
 kernel void portal_emit_probe(global const RenderParams* params, global const float* sky_theta,
                               global const float* sky_phi, global const float* sky_values,
-                              global const float* sky_factor, global const ulong* source_cdf,
-                              global const uint* source_guide, global const float4* portal_groups,
+                              global const float* sky_factor, global const uint* source_alias, global const float4* portal_groups,
                               global const uint* portal_range, global const ulong* portal_cdf,
                               global const float4* portal_vertices,
                               global const BvhNode* portal_nodes,
@@ -38,15 +34,10 @@ kernel void portal_emit_probe(global const RenderParams* params, global const fl
         return;
     const Sky sky = sky_from(sky_theta, sky_phi, sky_values, sky_factor, params->sky_theta_nodes,
                              params->sky_phi_nodes);
-    const SourceTable sources = source_table(source_cdf, source_guide, params->source_guide_shift);
-    Portals portals;
-    portals.groups = portal_groups;
-    portals.range = portal_range;
-    portals.triangle_cdf = portal_cdf;
-    portals.vertices = portal_vertices;
-    portals.nodes = portal_nodes;
-    portals.packets = portal_packets;
-    portals.group_count = params->portal_groups;
+    const SourceTable sources = source_table(source_alias, params->source_alias_shift);
+    const Portals portals =
+        portals_from(portal_groups, portal_range, portal_cdf, portal_vertices, portal_nodes,
+                     portal_packets, params->portal_groups);
     PathState p;
     const int ok = emit_portal(params, &sky, &sources, &portals, i, &p);
     out[i] = ok ? (float4)(p.beta.xyz, 1.0f) : (float4)(0.0f);
@@ -59,8 +50,6 @@ kernel void count_probe(global const BvhNode* nodes, global const TriPacket4* pa
     const uint i = get_global_id(0);
     if (i >= n)
         return;
-    const Ray ray = rays[i];
-    const RayPre r = ray_setup(ray.org_tmin.xyz, ray.dir_tmax.xyz, ray.org_tmin.w, ray.dir_tmax.w,
-                               FEN_BVH_WIDTH);
+    const RayPre r = ray_setup_stored(&rays[i], FEN_BVH_WIDTH);
     out[i] = bvh_count_hits(nodes, packets, &r);
 }

@@ -79,21 +79,21 @@ kernel void sampling_probe(global float4* out, uint n, uint kind, float a, float
     out[i] = r;
 }
 
-/* out[i] = entry chosen by cdf_search from 32 random bits. */
-kernel void cdf_probe(global const ulong* cdf, global const uint* guide, uint shift,
+/* out[i] = entry chosen by alias_pick from 32 random bits. */
+kernel void cdf_probe(global const uint* alias, uint shift,
                       global uint* out, uint n, uint seed)
 {
     const uint i = get_global_id(0);
     if (i >= n)
         return;
     const RngBlock r = rng_bits(seed, 0x7654321u, i, 0, 0, 0);
-    out[i] = cdf_search(cdf, guide, shift, r.x);
+    out[i] = alias_pick(alias, shift, r.x);
 }
 
-/* out[i].xyz = sampled direction towards the sky (cell from the integer CDF over the cells),
+/* out[i].xyz = sampled direction towards the sky (cell from the integer table over the cells),
    .w = its weight factor_k sin(theta); lum[i] = sky_eval in the sampled direction. */
 kernel void sky_probe(global const float* theta, global const float* phi, global const float* values,
-                      global const ulong* cdf, global const uint* guide, uint guide_shift,
+                      global const uint* alias, uint alias_shift,
                       global const float* factor, uint nt, uint np,
                       global float4* out, global float* lum, uint n, uint seed)
 {
@@ -104,7 +104,7 @@ kernel void sky_probe(global const float* theta, global const float* phi, global
     const RngBlock bits = rng_bits(seed, 0x2468ace0u, i, 0, 0, 0);
     const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
     float w;
-    const float3 d = sky_sample(&s, cdf_search(cdf, guide, guide_shift, bits.x), u.z, u.w, &w);
+    const float3 d = sky_sample(&s, alias_pick(alias, alias_shift, bits.x), u.z, u.w, &w);
     out[i] = (float4)(d, w);
     lum[i] = sky_eval(&s, d);
 }
@@ -118,11 +118,11 @@ kernel void fresnel_probe(global const float* cos_i, global float* out, uint n, 
 }
 
 
-/* out[i] = cdf_search for the given 32-bit values (boundaries, not random draws). */
-kernel void cdf_probe_at(global const ulong* cdf, global const uint* guide, uint shift,
+/* out[i] = alias_pick for the given 32-bit values (boundaries, not random draws). */
+kernel void cdf_probe_at(global const uint* alias, uint shift,
                          global const uint* r, global uint* out, uint n)
 {
     const uint i = get_global_id(0);
     if (i < n)
-        out[i] = cdf_search(cdf, guide, shift, r[i]);
+        out[i] = alias_pick(alias, shift, r[i]);
 }

@@ -12,9 +12,7 @@ kernel void intersect_closest(global const Ray* rays, global Hit* hits, uint n,
     const uint i = get_global_id(0);
     if (i >= n)
         return;
-    const Ray ray = rays[i];
-    const RayPre r = ray_setup(ray.org_tmin.xyz, ray.dir_tmax.xyz, ray.org_tmin.w, ray.dir_tmax.w,
-                               FEN_BVH_WIDTH);
+    const RayPre r = ray_setup_stored(&rays[i], FEN_BVH_WIDTH);
     hits[i] = bvh_intersect_closest(nodes, packets, &r);
 }
 
@@ -24,8 +22,6 @@ kernel void intersect_any(global const Ray* rays, global uint* occluded, uint n,
     const uint i = get_global_id(0);
     if (i >= n)
         return;
-    const Ray ray = rays[i];
-    const RayPre r = ray_setup(ray.org_tmin.xyz, ray.dir_tmax.xyz, ray.org_tmin.w, ray.dir_tmax.w,
-                               FEN_BVH_WIDTH);
+    const RayPre r = ray_setup_stored(&rays[i], FEN_BVH_WIDTH);
     occluded[i] = (uint)bvh_intersect_any(nodes, packets, &r);
 }

@@ -12,7 +12,7 @@ constexpr double kUnits = 4294967296.0;  // 2^32
 
 }  // namespace
 
-IntegerCdf makeIntegerCdf(const std::vector<double>& weight, bool guide)
+IntegerCdf makeIntegerCdf(const std::vector<double>& weight, bool alias)
 {
     IntegerCdf c;
     double total = 0.0;
@@ -33,22 +33,48 @@ IntegerCdf makeIntegerCdf(const std::vector<double>& weight, bool guide)
     c.cdf.assign(weight.size() + 1, 0);
     for (std::size_t e = 0; e < weight.size(); ++e)
         c.cdf[e + 1] = c.cdf[e] + n[e];
-    if (!guide)
+    if (!alias)
         return c;
-    // Guide table: 2^bits >= 2 entries per CDF entry, guide[b] = the entry holding r = b 2^shift.
+    // Vose's alias method in integers: 2^bits >= n columns of C = 2^(32 - bits) units each hold
+    // 2^32 units in all, as many as the entries. A column short of C takes the rest from an entry
+    // with more; what is moved is whole units, so the counts stay exact.
     std::uint32_t bits = 1;
-    while ((std::size_t{1} << bits) < 2 * weight.size() && bits < 24)
+    while ((std::size_t{1} << bits) < weight.size())
         ++bits;
-    c.guideShift = 32 - bits;
-    c.guide.assign(std::size_t{1} << bits, 0);
-    std::size_t e = 0;
-    for (std::size_t b = 0; b < c.guide.size(); ++b) {
-        const std::uint64_t r = static_cast<std::uint64_t>(b) << c.guideShift;
-        while (e + 1 < weight.size() && c.cdf[e + 1] <= r)
-            ++e;
-        c.guide[b] = static_cast<std::uint32_t>(e);
+    c.aliasShift = 32 - bits;
+    const std::size_t columns = std::size_t{1} << bits;
+    const std::uint64_t C = std::uint64_t{1} << c.aliasShift;
+    std::vector<std::uint64_t> left(columns, 0);
+    std::copy(n.begin(), n.end(), left.begin());
+    std::vector<std::uint32_t> small, large;
+    for (std::size_t j = columns; j-- > 0;)
+        (left[j] < C ? small : large).push_back(static_cast<std::uint32_t>(j));
+    c.alias.assign(2 * columns, 0);
+    while (!small.empty() && !large.empty()) {
+        const std::uint32_t s = small.back(), l = large.back();
+        small.pop_back();
+        c.alias[2 * s] = static_cast<std::uint32_t>(left[s]);
+        c.alias[2 * s + 1] = l;
+        left[l] -= C - left[s];
+        if (left[l] < C) {
+            large.pop_back();
+            small.push_back(l);
+        }
+    }
+    // The units left equal C times the columns left, so small is empty and each of these holds
+    // exactly C.
+    for (std::uint32_t j : large) {
+        c.alias[2 * j] = static_cast<std::uint32_t>(C);  // C <= 2^31
+        c.alias[2 * j + 1] = j;
     }
     return c;
+}
+
+std::uint32_t IntegerCdf::pick(std::uint32_t r) const
+{
+    const std::uint32_t j = r >> aliasShift;
+    const std::uint32_t offset = r & ((std::uint32_t{1} << aliasShift) - 1u);
+    return offset < alias[2 * j] ? j : alias[2 * j + 1];
 }
 
 SkyTables makeSkyTables(const std::optional<Goniogram>& sky)
@@ -128,7 +154,7 @@ void fillEmissionParams(const EmissionSetup& e, const SkyTables& sky, dev::Rende
     p.sky_weight = {static_cast<float>(e.skyWeight), 0.0f, 0.0f, 0.0f};
     p.sky_theta_nodes = sky.thetaNodes;
     p.sky_phi_nodes = sky.phiNodes;
-    p.source_guide_shift = e.sources.guideShift;
+    p.source_alias_shift = e.sources.aliasShift;
 }
 
 }  // namespace fen

@@ -29,20 +29,25 @@ struct SkyTables {
 };
 SkyTables makeSkyTables(const std::optional<Goniogram>& sky);
 
-// An integer CDF over n entries (cdf[0] = 0 .. cdf[n] = 2^32) and its guide table
-// (lib/sampling.h cdf_search): entry e has probability (cdf[e+1] - cdf[e]) / 2^32.
+// An integer CDF over n entries (cdf[0] = 0 .. cdf[n] = 2^32): entry e has probability
+// (cdf[e+1] - cdf[e]) / 2^32 exactly. The device draws from it with one read: an alias table of
+// 2^(32 - aliasShift) >= n columns of 2^aliasShift values each (lib/sampling.h alias_pick;
+// column j gives entry j to its first alias[2j] values and entry alias[2j+1] to the rest). The
+// columns are filled with integers, so every entry keeps exactly its cdf units.
 struct IntegerCdf {
     std::vector<std::uint64_t> cdf;
-    std::vector<std::uint32_t> guide;
-    std::uint32_t guideShift = 31;
+    std::vector<std::uint32_t> alias;  // per column: threshold, alias entry
+    std::uint32_t aliasShift = 31;
     double probability(std::size_t e) const
     {
         return static_cast<double>(cdf[e + 1] - cdf[e]) / 4294967296.0;
     }
+    // The entry the device draws for 32 random bits r (alias_pick); needs the alias table.
+    std::uint32_t pick(std::uint32_t r) const;
 };
-// Units in proportion to `weight` (>= 0), at least one for every positive weight; `guide`: also
-// the guide table (cdf_search), not needed for binary searches.
-IntegerCdf makeIntegerCdf(const std::vector<double>& weight, bool guide = true);
+// Units in proportion to `weight` (>= 0), at least one for every positive weight; `alias`: also
+// the alias table, not needed for binary searches.
+IntegerCdf makeIntegerCdf(const std::vector<double>& weight, bool alias = true);
 
 struct EmissionSetup {
     glm::dvec3 sphereCentre{0.0};
@@ -59,7 +64,7 @@ struct EmissionSetup {
 
 EmissionSetup setupUniformEmission(const Scene& scene, const SkyTables& sky);
 
-// Writes the emission fields of `p` (sphere, sun, sky sizes, source guide shift).
+// Writes the emission fields of `p` (sphere, sun, sky sizes, source alias shift).
 void fillEmissionParams(const EmissionSetup& e, const SkyTables& sky, dev::RenderParams& p);
 
 }  // namespace fen

@@ -54,7 +54,7 @@ struct Renderer::Impl {
     std::uint32_t pool;
 
     cl::Buffer paramsBuf, counters, paths, hits, connections, accum, cameraOut, cameraBuf;
-    cl::Buffer skyTheta, skyPhi, skyValues, skyFactor, sourceCdf, sourceGuide;
+    cl::Buffer skyTheta, skyPhi, skyValues, skyFactor, sourceAlias;
     cl::Buffer portalGroups, portalRange, portalCdf, portalVertices;
     std::unique_ptr<DeviceBvh> portalBvh;
     cl::Kernel emit, intersect, shade, connect, cameraPass;
@@ -93,7 +93,7 @@ struct Renderer::Impl {
             params.sun_weight = {static_cast<float>(portal->sunWeight.r),
                                  static_cast<float>(portal->sunWeight.g),
                                  static_cast<float>(portal->sunWeight.b), 0.0f};
-            params.source_guide_shift = portal->sources.guideShift;
+            params.source_alias_shift = portal->sources.aliasShift;
             params.portal_groups = static_cast<std::uint32_t>(portal->groups.size());
             params.portal_overlap = static_cast<std::uint32_t>(st.overlap);
         }
@@ -112,10 +112,8 @@ struct Renderer::Impl {
         skyPhi = c.buffer(CL_MEM_READ_ONLY, sky.phi.size() * 4, "sky nodes", sky.phi.data());
         skyValues = c.buffer(CL_MEM_READ_ONLY, sky.values.size() * 4, "sky luminances", sky.values.data());
         skyFactor = c.buffer(CL_MEM_READ_ONLY, factor->size() * 4, "sky weights", factor->data());
-        sourceCdf = c.buffer(CL_MEM_READ_ONLY, sources->cdf.size() * 8, "source table",
-                             sources->cdf.data());
-        sourceGuide = c.buffer(CL_MEM_READ_ONLY, sources->guide.size() * 4, "source guide table",
-                               sources->guide.data());
+        sourceAlias = c.buffer(CL_MEM_READ_ONLY, sources->alias.size() * 4, "source table",
+                               sources->alias.data());
 
         const auto t0 = Clock::now();
         const auto defs = scene.defines();
@@ -139,11 +137,11 @@ struct Renderer::Impl {
                                       "portal triangles", portal->vertices.data());
             portalBvh = std::make_unique<DeviceBvh>(c, portal->bvh);
             ocl::setKernelArgs(emit, paramsBuf, counters, paths, skyTheta, skyPhi, skyValues,
-                               skyFactor, sourceCdf, sourceGuide, portalGroups, portalRange,
+                               skyFactor, sourceAlias, portalGroups, portalRange,
                                portalCdf, portalVertices, portalBvh->nodes(), portalBvh->packets());
         } else {
             ocl::setKernelArgs(emit, paramsBuf, counters, paths, skyTheta, skyPhi, skyValues,
-                               skyFactor, sourceCdf, sourceGuide);
+                               skyFactor, sourceAlias);
         }
         ocl::setKernelArgs(intersect, paths, hits, pool, b.nodes(), b.packets());
         ocl::setKernelArgs(shade, paramsBuf, paths, hits, scene.primMaterial(), scene.materials(),

@@ -28,6 +28,22 @@ typedef struct {
     uint group_count;
 } Portals;
 
+static inline Portals portals_from(const global float4* groups, const global uint* range,
+                                   const global ulong* triangle_cdf, const global float4* vertices,
+                                   const global BvhNode* nodes, const global TriPacket4* packets,
+                                   uint group_count)
+{
+    Portals p;
+    p.groups = groups;
+    p.range = range;
+    p.triangle_cdf = triangle_cdf;
+    p.vertices = vertices;
+    p.nodes = nodes;
+    p.packets = packets;
+    p.group_count = group_count;
+    return p;
+}
+
 /* Index i in [0, n) with cdf[i] <= r < cdf[i+1] for an integer CDF of n + 1 entries (binary:
    a group has few triangles, or the table would be large anyway). */
 static inline uint cdf_search_binary(const global ulong* cdf, uint n, uint r)
@@ -99,7 +115,7 @@ static inline int emit_portal(const global RenderParams* params, const Sky* sky,
     const RngBlock bits2 = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT_PORTAL);
     const float4 u2 = rng_unit24x4(bits2.y, bits2.z, bits2.w);
 
-    const uint entry = cdf_search(sources->cdf, sources->guide, sources->guide_shift, bits.x);
+    const uint entry = alias_pick(sources->alias, sources->shift, bits.x);
     float3 beta;
     const float3 dir = source_direction(params, sky, entry, fen_u32_to_unit(bits.z),
                                         fen_u32_to_unit(bits.w), &beta);

@@ -10,17 +10,15 @@
 #include "shared/fen_render.h"
 
 typedef struct {
-    const global ulong* cdf;   /* 2 + sky cells entries: entry 0 the sun, 1 + k sky cell k */
-    const global uint* guide;
-    uint guide_shift;
+    const global uint* alias; /* entry 0 the sun, 1 + k sky cell k (lib/sampling.h alias_pick) */
+    uint shift;
 } SourceTable;
 
-static inline SourceTable source_table(const global ulong* cdf, const global uint* guide, uint shift)
+static inline SourceTable source_table(const global uint* alias, uint shift)
 {
     SourceTable t;
-    t.cdf = cdf;
-    t.guide = guide;
-    t.guide_shift = shift;
+    t.alias = alias;
+    t.shift = shift;
     return t;
 }
 

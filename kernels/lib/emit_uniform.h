@@ -22,7 +22,7 @@ static inline PathState emit_uniform(const global RenderParams* params, const Sk
     p.flags = FEN_PATH_ALIVE;
     const RngBlock bits = rng_path_bits(params->seed, p.path_lo, p.path_hi, 0, FEN_RNG_EMIT);
     const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
-    const uint entry = cdf_search(sources->cdf, sources->guide, sources->guide_shift, bits.x);
+    const uint entry = alias_pick(sources->alias, sources->shift, bits.x);
     float3 weight;
     const float3 dir = source_direction(params, sky, entry, u.z, u.w, &weight);
     if (entry != 0)

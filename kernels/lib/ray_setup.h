@@ -74,4 +74,11 @@ static inline RayPre ray_setup(float3 org, float3 dir, float tmin, float tmax, i
     return r;
 }
 
+/* A ray as stored in a buffer (origin and tmin, direction and tmax). */
+static inline RayPre ray_setup_stored(const global Ray* ray, int width)
+{
+    const float4 ot = ray->org_tmin, dt = ray->dir_tmax;
+    return ray_setup(ot.xyz, dt.xyz, ot.w, dt.w, width);
+}
+
 #endif /* FEN_RAY_SETUP_H */

@@ -35,6 +35,6 @@
     X(RenderParams, seed)    \
     X(RenderParams, fixed_scale) \
     X(RenderParams, batch)   \
-    X(RenderParams, source_guide_shift)
+    X(RenderParams, source_alias_shift)
 
 #endif /* FEN_LAYOUT_H */

@@ -91,7 +91,7 @@ typedef struct {
     fen_u64 path_end;        /* one past the last path index of this batch */
     fen_u32 seed;
     fen_u32 max_depth;
-    fen_u32 source_guide_shift; /* the source table's guide has 2^(32 - shift) entries */
+    fen_u32 source_alias_shift; /* the source alias table has 2^(32 - shift) columns */
     fen_f32 fixed_scale;     /* pixel accumulators hold round(value * fixed_scale), 128-bit */
     fen_u32 pad0;
     fen_u32 sky_theta_nodes;

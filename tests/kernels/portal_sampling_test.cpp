@@ -133,10 +133,9 @@ TEST(PortalSampling, SkyCellsFollowEquation2)
     // the user's table cells (30 deg x 90 deg).
     const std::uint32_t n = 400000;
     cl::Kernel k(ctx->program("test_probes.cl"), "cdf_probe");
-    cl::Buffer cb = ctx->buffer(CL_MEM_READ_ONLY, pe.sources.cdf.size() * 8, "cdf", pe.sources.cdf.data());
-    cl::Buffer gb = ctx->buffer(CL_MEM_READ_ONLY, pe.sources.guide.size() * 4, "guide", pe.sources.guide.data());
+    cl::Buffer ab = ctx->buffer(CL_MEM_READ_ONLY, pe.sources.alias.size() * 4, "alias", pe.sources.alias.data());
     cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 4, "entries");
-    ocl::setKernelArgs(k, cb, gb, pe.sources.guideShift, out, n, std::uint32_t{21});
+    ocl::setKernelArgs(k, ab, pe.sources.aliasShift, out, n, std::uint32_t{21});
     ocl::launch(*ctx, k, "cdf_probe", n);
     std::vector<std::uint32_t> got(n);
     ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, n * 4, got.data());
@@ -179,7 +178,7 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
     p.sun_dir = {float(scene.sun.travelDirection.x), float(scene.sun.travelDirection.y),
                  float(scene.sun.travelDirection.z), 1.0f};
     p.sun_weight = {float(pe.sunWeight.x), float(pe.sunWeight.y), float(pe.sunWeight.z), 0.0f};
-    p.source_guide_shift = pe.sources.guideShift;
+    p.source_alias_shift = pe.sources.aliasShift;
     p.portal_groups = static_cast<std::uint32_t>(pe.groups.size());
     p.portal_overlap = 1;
     p.seed = 3;
@@ -194,10 +193,10 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
     // Named: clSetKernelArg does not keep a buffer alive.
     const cl::Buffer theta = buf(sky.theta, "theta"), phi = buf(sky.phi, "phi"),
                      values = buf(sky.values, "values"), factor = buf(pe.skyFactor, "factor"),
-                     cdf = buf(pe.sources.cdf, "cdf"), guide = buf(pe.sources.guide, "guide"),
+                     alias = buf(pe.sources.alias, "alias"),
                      groups = buf(pe.groups, "groups"), range = buf(pe.groupRange, "range"),
                      tcdf = buf(pe.triangleCdf, "tcdf"), verts = buf(pe.vertices, "verts");
-    ocl::setKernelArgs(k, params, theta, phi, values, factor, cdf, guide, groups, range, tcdf, verts,
+    ocl::setKernelArgs(k, params, theta, phi, values, factor, alias, groups, range, tcdf, verts,
                        pbvh.nodes(), pbvh.packets(), out, n);
     ocl::launch(*ctx, k, "portal_emit_probe", n);
     std::vector<cl_float4> w(n);

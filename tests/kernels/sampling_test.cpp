@@ -113,17 +113,15 @@ TEST(Sampling, IntegerCdfChoosesWithExactProbabilities)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     // Entries of very different sizes, some empty: empty ones must never be chosen, tiny ones must
-    // keep a unit.
+    // keep a unit (tests/host/integer_cdf_test.cpp counts the units exactly).
     const std::vector<double> w = {5, 0, 1, 1e-12, 0, 30, 2, 2, 0, 7};
     const IntegerCdf t = makeIntegerCdf(w);
-    EXPECT_EQ(t.cdf.back(), std::uint64_t{1} << 32);
     EXPECT_GT(t.probability(3), 0.0) << "a tiny entry lost its light";
     const std::uint32_t n = 400000, cells = static_cast<std::uint32_t>(w.size());
     cl::Kernel k(ctx->program("test_probes.cl"), "cdf_probe");
-    cl::Buffer cb = ctx->buffer(CL_MEM_READ_ONLY, t.cdf.size() * 8, "cdf", t.cdf.data());
-    cl::Buffer gb = ctx->buffer(CL_MEM_READ_ONLY, t.guide.size() * 4, "guide", t.guide.data());
+    cl::Buffer ab = ctx->buffer(CL_MEM_READ_ONLY, t.alias.size() * 4, "alias", t.alias.data());
     cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 4, "choices");
-    ocl::setKernelArgs(k, cb, gb, t.guideShift, out, n, std::uint32_t{3});
+    ocl::setKernelArgs(k, ab, t.aliasShift, out, n, std::uint32_t{3});
     ocl::launch(*ctx, k, "cdf_probe", n);
     std::vector<std::uint32_t> got(n);
     ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, n * 4, got.data());
@@ -141,42 +139,34 @@ TEST(Sampling, IntegerCdfChoosesWithExactProbabilities)
     EXPECT_GT(test::chiSquarePValue(obs, exp), kMinP);
 }
 
-TEST(Sampling, IntegerCdfBoundariesExactly)
+TEST(Sampling, IntegerCdfColumnEdgesExactly)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
-    // Deterministic: the first and last value of every entry, and every guide bucket's start --
-    // an off-by-one there has probability 2^-32 per draw, invisible to a statistical test.
+    // Deterministic: both sides of every column's threshold and both ends of every column, against
+    // the host's pick -- an off-by-one there has probability 2^-32 per draw, invisible to a
+    // statistical test.
     const std::vector<double> w = {5, 0, 1, 1e-12, 0, 30, 2, 2, 0, 7, 1e-9, 3};
     const IntegerCdf t = makeIntegerCdf(w);
-    std::vector<std::uint32_t> r, expect;
-    for (std::size_t i = 0; i < w.size(); ++i) {
-        if (t.cdf[i + 1] == t.cdf[i])
-            continue;
-        r.push_back(static_cast<std::uint32_t>(t.cdf[i]));
-        expect.push_back(static_cast<std::uint32_t>(i));
-        r.push_back(static_cast<std::uint32_t>(t.cdf[i + 1] - 1));
-        expect.push_back(static_cast<std::uint32_t>(i));
-    }
-    for (std::size_t b = 0; b < t.guide.size(); ++b) {
-        const std::uint64_t v = static_cast<std::uint64_t>(b) << t.guideShift;
-        r.push_back(static_cast<std::uint32_t>(v));
-        std::size_t i = 0;
-        while (!(t.cdf[i] <= v && v < t.cdf[i + 1]))
-            ++i;
-        expect.push_back(static_cast<std::uint32_t>(i));
+    const std::uint64_t C = std::uint64_t{1} << t.aliasShift;
+    std::vector<std::uint32_t> r;
+    for (std::uint64_t j = 0; j < t.alias.size() / 2; ++j) {
+        const std::uint64_t base = j * C, thr = t.alias[2 * j];
+        for (std::uint64_t v : {base, base + C - 1, base + thr - (thr > 0), base + thr - (thr == C)})
+            r.push_back(static_cast<std::uint32_t>(v));
     }
     const auto n = static_cast<std::uint32_t>(r.size());
     cl::Kernel k(ctx->program("test_probes.cl"), "cdf_probe_at");
-    cl::Buffer cb = ctx->buffer(CL_MEM_READ_ONLY, t.cdf.size() * 8, "cdf", t.cdf.data());
-    cl::Buffer gb = ctx->buffer(CL_MEM_READ_ONLY, t.guide.size() * 4, "guide", t.guide.data());
+    cl::Buffer ab = ctx->buffer(CL_MEM_READ_ONLY, t.alias.size() * 4, "alias", t.alias.data());
     cl::Buffer rb = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "values", r.data());
     cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 4, "entries");
-    ocl::setKernelArgs(k, cb, gb, t.guideShift, rb, out, n);
+    ocl::setKernelArgs(k, ab, t.aliasShift, rb, out, n);
     ocl::launch(*ctx, k, "cdf_probe_at", n);
     std::vector<std::uint32_t> got(n);
     ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, n * 4, got.data());
-    for (std::uint32_t i = 0; i < n; ++i)
-        EXPECT_EQ(got[i], expect[i]) << "r = " << r[i];
+    for (std::uint32_t i = 0; i < n; ++i) {
+        EXPECT_EQ(got[i], t.pick(r[i])) << "r = " << r[i];
+        EXPECT_NE(w[got[i]], 0.0) << "empty entry drawn at r = " << r[i];
+    }
 }
 
 struct SkyRun {
@@ -203,12 +193,11 @@ SkyRun runSky(ocl::Context& ctx, const SkySampler& s, std::uint32_t n)
     cl::Buffer th = ctx.buffer(CL_MEM_READ_ONLY, t.theta.size() * 4, "theta", t.theta.data());
     cl::Buffer ph = ctx.buffer(CL_MEM_READ_ONLY, t.phi.size() * 4, "phi", t.phi.data());
     cl::Buffer va = ctx.buffer(CL_MEM_READ_ONLY, t.values.size() * 4, "values", t.values.data());
-    cl::Buffer cd = ctx.buffer(CL_MEM_READ_ONLY, s.cdf.cdf.size() * 8, "cdf", s.cdf.cdf.data());
-    cl::Buffer gu = ctx.buffer(CL_MEM_READ_ONLY, s.cdf.guide.size() * 4, "guide", s.cdf.guide.data());
+    cl::Buffer al = ctx.buffer(CL_MEM_READ_ONLY, s.cdf.alias.size() * 4, "alias", s.cdf.alias.data());
     cl::Buffer fa = ctx.buffer(CL_MEM_READ_ONLY, s.factor.size() * 4, "factor", s.factor.data());
     cl::Buffer out = ctx.buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "dirs");
     cl::Buffer lum = ctx.buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 4, "lum");
-    ocl::setKernelArgs(k, th, ph, va, cd, gu, s.cdf.guideShift, fa, t.thetaNodes, t.phiNodes, out,
+    ocl::setKernelArgs(k, th, ph, va, al, s.cdf.aliasShift, fa, t.thetaNodes, t.phiNodes, out,
                        lum, n, std::uint32_t{5});
     ocl::launch(ctx, k, "sky_probe", n);
     SkyRun r;
