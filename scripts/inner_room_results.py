@@ -5,7 +5,10 @@ wrong portal on the gap under the inner door, each against a long reference rend
 
 Run from the repository root after building (`scripts/setup.sh`):
 
-    python3 scripts/inner_room_results.py [--seconds 120] [--reference-seconds 1800]
+    python3 scripts/inner_room_results.py [--seconds 120] [--reference-seconds 1800] [--table-only]
+
+--table-only rewrites the table from the JSON reports of an earlier run (out/inner_room/*.json)
+without rendering.
 
 Standard library only. Renders go to out/inner_room/; the table to docs/results/inner_room.md.
 The reference uses portals on the window and the door (unbiased here: all light enters through
@@ -27,7 +30,18 @@ PAPER = {  # Table 1 of the paper: mean / RMS luminance in the rectangle, cd/m^2
 }
 
 
-def render(name, args, seconds, seed, reference=None):
+def report(name):
+    path = os.path.join(OUT, name + ".json")
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError) as e:
+        sys.exit("inner_room_results.py: %s: %s (render first, without --table-only)" % (path, e))
+
+
+def render(name, args, seconds, seed, reference=None, table_only=False):
+    if table_only:
+        return report(name)
     out = os.path.join(OUT, name + ".exr")
     cmd = ["build/fenestra", "render", SCENE, "--out", out, "--time", str(seconds), "--seed",
            str(seed), "--roi", ROI, "--no-progress"] + args
@@ -35,17 +49,19 @@ def render(name, args, seconds, seed, reference=None):
         cmd += ["--reference", reference]
     print("$", " ".join(cmd), flush=True)
     subprocess.run(cmd, check=True)
-    with open(os.path.join(OUT, name + ".json")) as f:
-        return json.load(f)
+    return report(name)
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--seconds", type=float, default=120.0)
     ap.add_argument("--reference-seconds", type=float, default=1800.0)
+    ap.add_argument("--table-only", action="store_true",
+                    help="rewrite the table from the JSON reports of an earlier run")
     a = ap.parse_args()
     os.makedirs(OUT, exist_ok=True)
-    ref = render("reference", ["--method", "portal"], a.reference_seconds, 1000)
+    ref = render("reference", ["--method", "portal"], a.reference_seconds, 1000,
+                 table_only=a.table_only)
     ref_exr = os.path.join(OUT, "reference.exr")
     runs = [
         ("uniform", "uniform", []),
@@ -54,7 +70,7 @@ def main():
     ]
     rows = []
     for label, name, args in runs:
-        j = render(name, args, a.seconds, 1, ref_exr)
+        j = render(name, args, a.seconds, 1, ref_exr, a.table_only)
         rows.append((label, j))
 
     u_noise = rows[0][1]["noise_std_err_cd_m2"]
