@@ -155,4 +155,13 @@ PortalEmission setupPortalEmission(const Scene& scene, const SkyTables& sky,
     return e;
 }
 
+void fillPortalParams(const PortalEmission& e, PortalOverlap overlap, dev::RenderParams& p)
+{
+    p.sun_weight = {static_cast<float>(e.sunWeight.r), static_cast<float>(e.sunWeight.g),
+                    static_cast<float>(e.sunWeight.b), 0.0f};
+    p.source_alias_shift = e.sources.aliasShift;
+    p.portal_groups = static_cast<std::uint32_t>(e.groups.size());
+    p.portal_overlap = static_cast<std::uint32_t>(overlap);
+}
+
 }  // namespace fen

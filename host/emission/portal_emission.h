@@ -49,4 +49,8 @@ PortalEmission setupPortalEmission(const Scene& scene, const SkyTables& sky,
                                    const std::optional<Goniogram>& goniogram,
                                    const std::string& portalOverride, int bvhWidth);
 
+// The portal strategy's fields of the render parameters (after fillEmissionParams, whose sun
+// weight and source table it replaces).
+void fillPortalParams(const PortalEmission& e, PortalOverlap overlap, dev::RenderParams& p);
+
 }  // namespace fen

@@ -90,12 +90,7 @@ struct Renderer::Impl {
             portal = setupPortalEmission(s, sky, g, st.portals, scene.bvh().width());
             sources = &portal->sources;
             factor = &portal->skyFactor;
-            params.sun_weight = {static_cast<float>(portal->sunWeight.r),
-                                 static_cast<float>(portal->sunWeight.g),
-                                 static_cast<float>(portal->sunWeight.b), 0.0f};
-            params.source_alias_shift = portal->sources.aliasShift;
-            params.portal_groups = static_cast<std::uint32_t>(portal->groups.size());
-            params.portal_overlap = static_cast<std::uint32_t>(st.overlap);
+            fillPortalParams(*portal, st.overlap, params);
         }
 
         paramsBuf = c.buffer(CL_MEM_READ_ONLY, sizeof params, "render parameters");

@@ -7,15 +7,17 @@
  * triangle of it by area,
  * x uniformly on the triangle; the origin is moved back along -v outside the scene's bounding
  * sphere. N(x, v) = portal triangles on the ray's line (counted in the portals' own BVH from that
- * origin, so every crossing has t > 0). Weight: sun E W / P(sun), sky W factor_k sin(theta)
- * (W as the exact w_g / P(g) of the group drawn); then
+ * origin, so every crossing has t > 0; not counted for --portal-overlap none).
+ * Weight: sun E W / P(sun), sky W factor_k sin(theta) (W as the exact w_g / P(g) of the group
+ * drawn); then
  * divided by N (--portal-overlap weight) or kept with probability 1/N (reject: the path index is
  * spent all the same, so rejected candidates count as emitted paths).
- * Requires bvh_traverse.h (FEN_BVH_WIDTH).
+ * Build with -DFEN_BVH_WIDTH (the portals' BVH has the scene's layout).
  */
 #ifndef FEN_EMIT_PORTAL_H
 #define FEN_EMIT_PORTAL_H
 
+#include "lib/bvh_traverse.h"
 #include "lib/emit_source.h"
 
 typedef struct {
@@ -133,14 +135,16 @@ static inline int emit_portal(const global RenderParams* params, const Sky* sky,
     const float back = length(x - params->sphere.xyz) + params->sphere.w;
     const float3 origin = x - dir * back;
 
-    /* overlap: N(x, v) portal triangles on the line */
-    const RayPre r = ray_setup(origin, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
-    const uint n = max(bvh_count_hits(portals->nodes, portals->packets, &r), 1u);
     beta *= scale;
-    if (params->portal_overlap == 1u)
-        beta /= (float)n;
-    else if (params->portal_overlap == 0u && u2.z * (float)n >= 1.0f)
-        return 0;
+    if (params->portal_overlap != 2u) {
+        /* overlap: N(x, v) portal triangles on the line */
+        const RayPre r = ray_setup(origin, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
+        const uint n = max(bvh_count_hits(portals->nodes, portals->packets, &r), 1u);
+        if (params->portal_overlap == 1u)
+            beta /= (float)n;
+        else if (u2.z * (float)n >= 1.0f)
+            return 0;
+    }
 
     p->org = (float4)(origin, 0.0f);
     p->dir = (float4)(dir, 0.0f);

@@ -177,10 +177,7 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
     fillEmissionParams(ue, sky, p);
     p.sun_dir = {float(scene.sun.travelDirection.x), float(scene.sun.travelDirection.y),
                  float(scene.sun.travelDirection.z), 1.0f};
-    p.sun_weight = {float(pe.sunWeight.x), float(pe.sunWeight.y), float(pe.sunWeight.z), 0.0f};
-    p.source_alias_shift = pe.sources.aliasShift;
-    p.portal_groups = static_cast<std::uint32_t>(pe.groups.size());
-    p.portal_overlap = 1;
+    fillPortalParams(pe, PortalOverlap::Weight, p);
     p.seed = 3;
     DeviceBvh pbvh(*ctx, pe.bvh);
     const std::uint32_t n = 1u << 20;
