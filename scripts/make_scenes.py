@@ -283,11 +283,45 @@ def inner_room_scene(path):
                    "sun_altitude_deg": 30.0, "sun_azimuth_deg": 200.0})
 
 
+def bay_window_scene(path):
+    """scenes/bay_window.gltf — many portal planes: a 6 x 6 m room whose south side is a
+    half-cylindrical bay window of 200 vertical glass facets (400 triangles, 200 planes,
+    extras.portal = true), radius 3 m, 3 m high. It exists to measure how portal emission scales
+    with the number of portal planes (table precompute, paths per second); same sun and sky as
+    the inner room.
+    """
+    g = Gltf("fenestra scripts/make_scenes.py")
+    wall = g.material("wall", (0.7, 0.7, 0.7))
+    glass = g.material("glass", (1.0, 1.0, 1.0), transmission=0.9, ior=1.5)
+    g.mesh_node("floor", rect_y(0, 6, 0, 6, 0.0), wall)
+    g.mesh_node("ceiling", rect_y(0, 6, 0, 6, 3.0), wall)
+    g.mesh_node("walls", rect_x(0, 6, 0, 3, 0.0) + rect_z(0, 6, 0, 3, 0.0) +
+                rect_z(0, 6, 0, 3, 6.0), wall)
+    facets, r, h = 200, 3.0, 3.0
+    bay, bay_floor, bay_ceiling = [], [], []
+    for k in range(facets):
+        a0, a1 = math.pi * k / facets, math.pi * (k + 1) / facets
+        x0, z0 = 3 - r * math.cos(a0), 6 + r * math.sin(a0)
+        x1, z1 = 3 - r * math.cos(a1), 6 + r * math.sin(a1)
+        bay += quad((x0, 0.0, z0), (x1, 0.0, z1), (x1, h, z1), (x0, h, z0))
+        bay_floor.append(((3.0, 0.0, 6.0), (x0, 0.0, z0), (x1, 0.0, z1)))
+        bay_ceiling.append(((3.0, h, 6.0), (x0, h, z0), (x1, h, z1)))
+    # the bay has a floor and a ceiling: light enters only through the glass
+    g.mesh_node("bay_floor", bay_floor, wall)
+    g.mesh_node("bay_ceiling", bay_ceiling, wall)
+    g.mesh_node("bay", bay, glass, extras={"portal": True})
+    g.sun("sun", 30.0, 200.0, 60000.0)
+    g.camera("camera", (1.0, 1.5, 1.0), (3.0, 0.5, 5.0), 60.0, 4.0 / 3.0)
+    g.write(path, {"type": "cie", "cie_type": 12, "zenith_luminance": 3000.0,
+                   "sun_altitude_deg": 30.0, "sun_azimuth_deg": 200.0})
+
+
 def main():
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
     os.makedirs(root, exist_ok=True)
     room_scene(os.path.join(root, "room.gltf"))
     inner_room_scene(os.path.join(root, "inner_room.gltf"))
+    bay_window_scene(os.path.join(root, "bay_window.gltf"))
 
 
 if __name__ == "__main__":
