@@ -99,9 +99,32 @@ int main(int argc, char** argv)
     renderCmd->add_option("--max-bounces", render.maxBounces, "Surface interactions per path (default 64)");
     renderCmd->add_option("--roi", render.roi, "Region x0,y0,x1,y1 for the statistics (default: whole image)");
     renderCmd->add_option("--reference", render.referencePath, "Reference EXR: report RMSE and relative MSE");
-    renderCmd->add_option("--method", render.method, "Emission strategy: uniform (default) or portal");
+    renderCmd->add_option("--method", render.method,
+                          "Emission strategy: uniform (default), portal or adaptive");
+    renderCmd->add_option("--base", render.base,
+                          "With adaptive: the base density it learns over, uniform (default) or portal");
     renderCmd->add_option("--portals", render.portals,
                           "Portal nodes NAME,NAME replacing the scene's extras.portal marking");
+    renderCmd->add_option("--adaptive-initial-sky-depth", render.adaptiveInitialSkyDepth,
+                          "With adaptive: sky direction boxes to start with, 4^depth (default 1)");
+    renderCmd->add_option("--adaptive-max-sky-depth", render.adaptiveMaxSkyDepth,
+                          "With adaptive: finest sky direction boxes, 2^-depth of a side (default 6)");
+    renderCmd->add_option("--adaptive-estimate", render.adaptiveEstimate,
+                          "With adaptive: how a cell's second moment is estimated, pooled (default) or squares");
+    renderCmd->add_option("--adaptive-initial-depth", render.adaptiveInitialDepth,
+                          "With adaptive: origin boxes per region to start with, 4^depth (default 3)");
+    renderCmd->add_option("--adaptive-max-depth", render.adaptiveMaxDepth,
+                          "With adaptive: finest origin boxes, 2^-depth of the region's side (default 10)");
+    renderCmd->add_option("--adaptive-defensive", render.adaptiveDefensive,
+                          "With adaptive: share of the base density kept in the mixture (default 0.1)");
+    renderCmd->add_option("--adaptive-disk-share", render.adaptiveDiskShare,
+                          "With adaptive --base portal: the emission disk's share of the base (default 0.1)");
+    renderCmd->add_option("--adaptive-split", render.adaptiveSplit,
+                          "With adaptive: split a cell when that lowers the learned objective by this share (default 1/2048)");
+    renderCmd->add_option("--adaptive-first-pass", render.adaptiveFirstPass,
+                          "With adaptive: paths of the first learning pass; passes double (default 65536)");
+    renderCmd->add_option("--adaptive-max-cells", render.adaptiveMaxCells,
+                          "With adaptive: most cells the grid may have (default 32768)");
     renderCmd->add_option("--portal-overlap", render.portalOverlap,
                           "Where portals overlap along a ray: reject (default) or weight; none is "
                           "biased (for demonstration)");

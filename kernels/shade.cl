@@ -74,7 +74,7 @@ static inline uint shade_one(uint i, global const RenderParams* params, global P
                     const float3 o = offset_ray_origin(x, offset_m, ng, to_cam);
                     c.org = (float4)(o, as_float(pixel));
                     c.to_cam = (float4)(cam->position.xyz - o, 0.0f);
-                    c.value = (float4)(value, 0.0f);
+                    c.value = (float4)(value, p.beta.w); /* the emission cell */
                     connections[i] = c;
                 }
             }

@@ -21,25 +21,15 @@ kernel void portal_pick_probe(global const float4* groups, global const uint* ra
 
 /* out[i] = the weight (rgb, before the camera) and alive flag of path i emitted by the portal
    strategy: what the emission kernel would put in the pool. */
-kernel void portal_emit_probe(global const RenderParams* params, global const float* sky_theta,
-                              global const float* sky_phi, global const float* sky_values,
-                              global const float* sky_factor, global const uint* source_alias, global const float4* portal_groups,
-                              global const uint* portal_range, global const ulong* portal_cdf,
-                              global const float4* portal_vertices,
-                              global const BvhNode* portal_nodes,
-                              global const TriPacket4* portal_packets, global float4* out, uint n)
+kernel void portal_emit_probe(global const RenderParams* params, FEN_PORTAL_ARGS, global float4* out,
+                              uint n)
 {
     const uint i = get_global_id(0);
     if (i >= n)
         return;
-    const Sky sky = sky_from(sky_theta, sky_phi, sky_values, sky_factor, params->sky_theta_nodes,
-                             params->sky_phi_nodes);
-    const SourceTable sources = source_table(source_alias, params->source_alias_shift);
-    const Portals portals =
-        portals_from(portal_groups, portal_range, portal_cdf, portal_vertices, portal_nodes,
-                     portal_packets, params->portal_groups);
+    const PortalEmitter e = FEN_PORTAL_EMITTER;
     PathState p;
-    const int ok = emit_portal(params, &sky, &sources, &portals, i, &p);
+    const int ok = emit_portal(params, &e, i, &p);
     out[i] = ok ? (float4)(p.beta.xyz, 1.0f) : (float4)(0.0f);
 }
 

@@ -27,7 +27,6 @@
 
 namespace fen {
 
-int defaultBvhWidth(bool gpu) { return gpu ? 2 : 8; }
 
 namespace {
 
@@ -220,7 +219,7 @@ int runBench(const BenchOptions& opt)
         }
         if (renderer) {
             lastRender = renderer->render();
-            const double rays = static_cast<double>(lastRender.extensionRays + lastRender.shadowRays);
+            const double rays = static_cast<double>(lastRender.counts.extensionRays + lastRender.counts.shadowRays);
             const double rate = rays / lastRender.renderSeconds * 1e-6;
             if (counted) {
                 renderMrays.v.push_back(rate);
@@ -294,9 +293,9 @@ int runBench(const BenchOptions& opt)
                            {"paths", lastRender.paths},
                            {"width", 320},
                            {"height", 240},
-                           {"extension_rays", lastRender.extensionRays},
-                           {"shadow_rays", lastRender.shadowRays},
-                           {"camera_rays", lastRender.cameraRays},
+                           {"extension_rays", lastRender.counts.extensionRays},
+                           {"shadow_rays", lastRender.counts.shadowRays},
+                           {"camera_rays", lastRender.counts.cameraRays},
                            {"mrays_s", renderMrays.json()},
                            {"mpaths_s", renderPathsPerSec.json()},
                            {"over_closest_traversal", renderRatio.json()}};

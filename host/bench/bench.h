@@ -23,7 +23,4 @@ struct BenchOptions {
 
 int runBench(const BenchOptions& opt);
 
-// The layout a device traverses fastest (measured: docs/bvh_layout.md).
-int defaultBvhWidth(bool gpu);
-
 }  // namespace fen

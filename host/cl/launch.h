@@ -13,19 +13,28 @@
 
 namespace fen { namespace ocl {
 
-// Buffers must outlive the launch: clSetKernelArg does not retain memory objects, so a temporary
-// cl::Buffer would be freed before the kernel runs (seen as a PoCL crash) -- refused at compile time.
+// Sets arguments first, first + 1, ... of `kernel`; they must be its last ones (the arity is
+// checked). Buffers must outlive the launch: clSetKernelArg does not retain memory objects, so a
+// temporary cl::Buffer would be freed before the kernel runs (seen as a PoCL crash) -- refused at
+// compile time.
 template <class... Args>
-void setKernelArgs(cl::Kernel& kernel, Args&&... args)
+void setKernelArgsFrom(cl::Kernel& kernel, cl_uint first, Args&&... args)
 {
     static_assert(((!std::is_same_v<std::decay_t<Args>, cl::Buffer> || std::is_lvalue_reference_v<Args>) && ...),
                   "pass buffers that outlive the launch, not temporaries");
     const cl_uint expected = kernel.getInfo<CL_KERNEL_NUM_ARGS>();
-    if (expected != sizeof...(Args))
+    if (expected != first + sizeof...(Args))
         throw Error(cat("kernel ", kernel.getInfo<CL_KERNEL_FUNCTION_NAME>(), " takes ", expected,
-                        " arguments, the host passes ", sizeof...(Args)));
-    cl_uint i = 0;
+                        " arguments, the host passes ", first + sizeof...(Args)));
+    cl_uint i = first;
     (kernel.setArg(i++, args), ...);
+}
+
+// Sets all arguments of `kernel`.
+template <class... Args>
+void setKernelArgs(cl::Kernel& kernel, Args&&... args)
+{
+    setKernelArgsFrom(kernel, 0, std::forward<Args>(args)...);
 }
 
 inline cl::Event launch(Context& ctx, const cl::Kernel& kernel, const std::string& name,

@@ -103,8 +103,7 @@ PortalEmission setupPortalEmission(const Scene& scene, const SkyTables& sky,
     e.portals = collectPortals(scene, portalOverride);
 
     const glm::dvec3 E = scene.sun.present ? scene.sun.illuminanceRgb_lux : glm::dvec3(0.0);
-    const double sunY = 0.2126 * E.r + 0.7152 * E.g + 0.0722 * E.b;
-    e.sunFlux_lm = scene.sun.present ? sunY * sunPortalWeight(scene.sun, e.portals) : 0.0;
+    e.sunFlux_lm = scene.sun.present ? sunIlluminanceY_lux(scene) * sunPortalWeight(scene.sun, e.portals) : 0.0;
     std::vector<double> w{e.sunFlux_lm};
     if (goniogram && sky.cells > 0) {
         std::vector<double> cells(sky.cells);
@@ -125,10 +124,8 @@ PortalEmission setupPortalEmission(const Scene& scene, const SkyTables& sky,
         w[0] = 1.0;  // no light reaches the portals: the (zero-weight) sun, so the table is valid
     e.sources = makeIntegerCdf(w);
     e.pSun = e.sunFlux_lm > 0.0 ? e.sources.probability(0) : 0.0;
-    // A disk sun's directions are uniform in its cone, so a plane facing it receives
-    // E (1 + cos a) / 2 per unit weight: 2 / (1 + cos a) restores its normal illuminance E.
     if (e.pSun > 0.0)
-        e.sunWeight = E * (2.0 / (1.0 + std::cos(scene.sun.angularRadiusRad))) / e.pSun;
+        e.sunWeight = E * sunConeFactor(scene.sun) / e.pSun;
     e.skyFactor.assign(std::max<std::uint32_t>(1, sky.cells), 0.0f);
     for (std::uint32_t k = 0; k < sky.cells; ++k) {
         const double p = e.sources.probability(1 + k);
@@ -153,15 +150,6 @@ PortalEmission setupPortalEmission(const Scene& scene, const SkyTables& sky,
     e.precomputeSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return e;
-}
-
-void fillPortalParams(const PortalEmission& e, PortalOverlap overlap, dev::RenderParams& p)
-{
-    p.sun_weight = {static_cast<float>(e.sunWeight.r), static_cast<float>(e.sunWeight.g),
-                    static_cast<float>(e.sunWeight.b), 0.0f};
-    p.source_alias_shift = e.sources.aliasShift;
-    p.portal_groups = static_cast<std::uint32_t>(e.groups.size());
-    p.portal_overlap = static_cast<std::uint32_t>(overlap);
 }
 
 }  // namespace fen

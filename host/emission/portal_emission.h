@@ -1,5 +1,6 @@
-// portal_emission.h — the host half of the `portal` strategy (DESIGN.md §3.2, the paper's
-// method 1): rays are emitted only through the user-marked portals.
+// portal_emission.h — the tables of the `portal` strategy (DESIGN.md §3.2, the paper's method 1):
+// rays are emitted only through the user-marked portals. (The strategy itself, its buffers and
+// report: portal_strategy.h.)
 //
 // Per path (kernels/lib/emit_portal.h): one entry of a joint table picks the sun or a sky cell;
 // the direction v is the sun's, or sampled in the cell with density proportional to g (as in
@@ -21,11 +22,15 @@
 
 #include "bvh_flat.h"
 #include "emission/portals.h"
-#include "render/emission_setup.h"
+#include "emission/source_table.h"
 
 namespace fen {
 
-enum class PortalOverlap : std::uint32_t { Reject = 0, Weight = 1, None = 2 };
+enum class PortalOverlap : std::uint32_t {
+    Reject = FEN_OVERLAP_REJECT,
+    Weight = FEN_OVERLAP_WEIGHT,
+    None = FEN_OVERLAP_NONE
+};
 PortalOverlap parsePortalOverlap(const std::string& s);  // reject | weight | none
 
 struct PortalEmission {
@@ -48,9 +53,5 @@ struct PortalEmission {
 PortalEmission setupPortalEmission(const Scene& scene, const SkyTables& sky,
                                    const std::optional<Goniogram>& goniogram,
                                    const std::string& portalOverride, int bvhWidth);
-
-// The portal strategy's fields of the render parameters (after fillEmissionParams, whose sun
-// weight and source table it replaces).
-void fillPortalParams(const PortalEmission& e, PortalOverlap overlap, dev::RenderParams& p);
 
 }  // namespace fen

@@ -17,6 +17,7 @@
 #include "io/png_preview.h"
 #include "render/camera_setup.h"
 #include "render/image_stats.h"
+#include "emission/adaptive_strategy.h"
 #include "render/renderer.h"
 #include "scene/gltf_load.h"
 #include "sky/sky_spec.h"
@@ -52,15 +53,60 @@ void prepareOutput(const std::string& exrPath)
 
 }  // namespace
 
+EmissionSettings emissionSettings(const RenderOptions& opt)
+{
+    EmissionSettings e;
+    e.method = parseEmissionMethod(opt.method);
+    e.overlap = parsePortalOverlap(opt.portalOverlap);
+    e.portals = opt.portals;
+    AdaptiveOptions& a = e.adaptive;
+    a.base = parseEmissionMethod(opt.base);
+    const bool adaptive = e.method == EmissionMethod::Adaptive;
+    const bool portalsUsed = e.method == EmissionMethod::Portal || (adaptive && a.base == EmissionMethod::Portal);
+    if (!opt.portals.empty() && !portalsUsed)
+        throw Error("--portals applies to --method portal and to --method adaptive --base portal");
+    if (opt.base != "uniform" && !adaptive)
+        throw Error("--base applies to --method adaptive");
+    if (a.base == EmissionMethod::Adaptive)
+        throw Error("--base 'adaptive': expected uniform or portal");
+    const bool tuned = !opt.adaptiveEstimate.empty() || opt.adaptiveInitialSkyDepth >= 0 || opt.adaptiveMaxSkyDepth >= 0 || opt.adaptiveInitialDepth >= 0 || opt.adaptiveMaxDepth >= 0 ||
+                       opt.adaptiveDefensive >= 0.0 || opt.adaptiveDiskShare >= 0.0 || opt.adaptiveSplit >= 0.0 ||
+                       opt.adaptiveFirstPass > 0 || opt.adaptiveMaxCells > 0;
+    if (tuned && !adaptive)
+        throw Error("the --adaptive-* options apply to --method adaptive");
+    if (opt.adaptiveInitialSkyDepth >= 0)
+        a.initialSkyDepth = opt.adaptiveInitialSkyDepth;
+    if (opt.adaptiveMaxSkyDepth >= 0)
+        a.maxSkyDepth = opt.adaptiveMaxSkyDepth;
+    if (opt.adaptiveEstimate == "squares")
+        a.estimate = GridEstimate::Squares;
+    else if (!opt.adaptiveEstimate.empty() && opt.adaptiveEstimate != "pooled")
+        throw Error(cat("--adaptive-estimate '", opt.adaptiveEstimate, "': expected pooled or squares"));
+    if (opt.adaptiveInitialDepth >= 0)
+        a.initialDepth = opt.adaptiveInitialDepth;
+    if (opt.adaptiveMaxDepth >= 0)
+        a.maxDepth = opt.adaptiveMaxDepth;
+    if (opt.adaptiveDefensive >= 0.0)
+        a.defensive = opt.adaptiveDefensive;
+    if (opt.adaptiveDiskShare >= 0.0)
+        a.diskShare = opt.adaptiveDiskShare;
+    if (opt.adaptiveSplit >= 0.0)
+        a.splitGain = opt.adaptiveSplit;
+    if (opt.adaptiveFirstPass > 0)
+        a.firstPass = opt.adaptiveFirstPass;
+    if (opt.adaptiveMaxCells > 0)
+        a.maxCells = opt.adaptiveMaxCells;
+    if (adaptive)
+        validateAdaptiveOptions(a);
+    return e;
+}
+
 int runRender(const RenderOptions& opt)
 {
     const auto t0 = std::chrono::steady_clock::now();
     if (opt.outPath.size() < 5 || opt.outPath.substr(opt.outPath.size() - 4) != ".exr")
         throw Error(cat("--out '", opt.outPath, "' must name an .exr file"));
-    const EmissionMethod method = parseEmissionMethod(opt.method);
-    const PortalOverlap overlap = parsePortalOverlap(opt.portalOverlap);
-    if (method != EmissionMethod::Portal && !opt.portals.empty())
-        throw Error("--portals applies to --method portal");
+    const EmissionSettings emission = emissionSettings(opt);
     if (opt.paths > 0 && opt.timeSeconds > 0.0)
         throw Error("give either --paths or --time, not both");
     if (opt.timeSeconds < 0.0 || (opt.timeSeconds == 0.0 && opt.paths == 0))
@@ -88,9 +134,7 @@ int runRender(const RenderOptions& opt)
 
     ocl::Context ctx(ocl::selectDevice(opt.device));
     RenderSettings settings;
-    settings.method = method;
-    settings.portals = opt.portals;
-    settings.overlap = overlap;
+    settings.emission = emission;
     settings.paths = opt.paths;
     settings.timeSeconds = opt.timeSeconds;
     settings.batches = opt.batches;
@@ -136,11 +180,12 @@ int runRender(const RenderOptions& opt)
     j["batches"] = r.batches;
     j["paths_per_batch"] = r.pathsPerBatch;
     j["camera_samples_per_pixel"] = static_cast<std::uint64_t>(r.batches) * opt.cameraSpp;
-    const std::uint64_t lightRays = r.extensionRays + r.shadowRays;
-    j["rays"] = {{"extension", r.extensionRays},
-                 {"shadow", r.shadowRays},
-                 {"camera", r.cameraRays},
-                 {"total", lightRays + r.cameraRays}};
+    const BatchCounts& n = r.counts;
+    const std::uint64_t lightRays = n.extensionRays + n.shadowRays;
+    j["rays"] = {{"extension", n.extensionRays},
+                 {"shadow", n.shadowRays},
+                 {"camera", n.cameraRays},
+                 {"total", lightRays + n.cameraRays}};
     j["seconds"] = {{"total", totalSeconds},
                     {"render", r.renderSeconds},
                     {"calibration", r.calibrationSeconds},
@@ -160,23 +205,12 @@ int runRender(const RenderOptions& opt)
         j["rmse_cd_m2"] = *st.rmse_cd_m2;
         j["rel_mse"] = *st.relMse;
     }
-    if (method == EmissionMethod::Portal)
-        j["emission"] = {{"portal_nodes", r.portalNodes},
-                         {"portal_triangles", r.portalTriangles},
-                         {"portal_plane_groups", r.portalGroups},
-                         {"portal_overlap", opt.portalOverlap},
-                         {"sun_flux_lm", r.portalSunFlux_lm},
-                         {"sky_flux_lm", r.portalSkyFlux_lm},
-                         {"precompute_seconds", r.portalPrecomputeSeconds}};
-    else
-        j["emission"] = {{"sun_flux_lm", r.emission.sunFlux},
-                         {"sky_flux_lm", r.emission.skyFlux},
-                         {"p_sun", r.emission.pSun},
-                         {"disk_radius_m", r.emission.sphereRadius_m}};
-    j["counters"] = {{"bad_contributions", r.badContributions},
-                     {"fixed_point_overflows", r.overflows},
-                     {"max_bounce_cuts", r.maxBounceCuts},
-                     {"camera_glass_cuts", r.cameraGlassCuts}};
+    j["emission"] = r.emission;
+    j["counters"] = {{"bad_contributions", n.badContributions},
+                     {"fixed_point_overflows", n.overflows},
+                     {"stats_overflows", n.statsOverflows},
+                     {"max_bounce_cuts", n.maxBounceCuts},
+                     {"camera_glass_cuts", n.cameraGlassCuts}};
     for (const auto& [name, e] : r.kernels)
         j["kernels"][name] = {{"launches", e.launches}, {"device_seconds", e.deviceSeconds}};
     j["png_exposure"] = exposure;
@@ -197,12 +231,12 @@ int runRender(const RenderOptions& opt)
     if (st.rmse_cd_m2)
         std::printf(", RMSE %.4g, relMSE %.4g", *st.rmse_cd_m2, *st.relMse);
     std::printf("\nalso wrote %s, %s and %s\n", pngPath.c_str(), jsonPath.c_str(), noisePath.c_str());
-    if (r.badContributions || r.overflows)
+    if (n.badContributions || n.overflows)
         std::fprintf(stderr,
                      "fenestra: warning: %llu non-finite contributions and %llu fixed-point "
                      "overflows were dropped\n",
-                     static_cast<unsigned long long>(r.badContributions),
-                     static_cast<unsigned long long>(r.overflows));
+                     static_cast<unsigned long long>(n.badContributions),
+                     static_cast<unsigned long long>(n.overflows));
     return 0;
 }
 

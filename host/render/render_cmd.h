@@ -21,6 +21,17 @@ struct RenderOptions {
     std::string method = "uniform";
     std::string portals;            // --portals NAME,NAME
     std::string portalOverlap = "reject";
+    std::string base = "uniform";   // --base (adaptive)
+    std::string adaptiveEstimate;   // --adaptive-estimate pooled|squares
+    int adaptiveInitialDepth = -1;  // -1: the default of AdaptiveOptions (emission/strategy.h)
+    int adaptiveMaxDepth = -1;
+    int adaptiveInitialSkyDepth = -1;
+    int adaptiveMaxSkyDepth = -1;
+    double adaptiveDefensive = -1.0;
+    double adaptiveDiskShare = -1.0;
+    double adaptiveSplit = -1.0;
+    std::uint64_t adaptiveFirstPass = 0;
+    std::uint32_t adaptiveMaxCells = 0;
     int bvhWidth = 0;
     int batches = 16;
     int cameraSpp = 1;
@@ -30,5 +41,9 @@ struct RenderOptions {
 };
 
 int runRender(const RenderOptions& opt);
+
+struct EmissionSettings;
+// The emission settings the options ask for; errors name the option.
+EmissionSettings emissionSettings(const RenderOptions& opt);
 
 }  // namespace fen

@@ -5,6 +5,8 @@
 
 namespace fen {
 
+int defaultBvhWidth(bool gpu) { return gpu ? 2 : 8; }
+
 DeviceBvh::DeviceBvh(ocl::Context& ctx, const FlatBvh& bvh)
     : width_(bvh.width),
       nodes_(ctx.buffer(CL_MEM_READ_ONLY, bvh.nodeBytes(), "BVH nodes", bvh.nodeWords.data())),

@@ -9,6 +9,9 @@
 
 namespace fen {
 
+// The layout a device traverses fastest (measured: docs/bvh.md).
+int defaultBvhWidth(bool gpu);
+
 class DeviceBvh {
 public:
     DeviceBvh(ocl::Context& ctx, const FlatBvh& bvh);

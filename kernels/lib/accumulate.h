@@ -17,11 +17,28 @@
 
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 
+#include "shared/fen_emission.h"
 #include "shared/fen_render.h"
 
 static inline void counter_add(volatile global ulong* counters, int which, ulong v)
 {
     atom_add(counters + which, v);
+}
+
+/* Adds x (fixed-point units, >= 0) to the 128-bit accumulator (word[0] low, word[1] high);
+   returns 0, adding nothing, when x is not below 2^127 (or NaN). */
+static inline int fixed_add128(volatile global ulong* word, float x)
+{
+    if (!(x < 0x1p127f))
+        return 0;
+    /* x = hi 2^64 + lo exactly: x has 24 significant bits, so x - hi 2^64 is a float too */
+    const ulong hi = convert_ulong_rtz(x * 0x1p-64f);
+    const ulong lo = convert_ulong_rte(x - (float)hi * 0x1p64f);
+    const ulong old = atom_add(word, lo);
+    const ulong carry = (old + lo < old) ? 1ul : 0ul;
+    if (hi + carry != 0ul)
+        atom_add(word + 1, hi + carry);
+    return 1;
 }
 
 /* accum holds 6 ulongs per pixel: (low, high) for r, g and b. */
@@ -36,22 +53,25 @@ static inline void splat_rgb(volatile global ulong* accum, uint pixel, float3 va
     const float3 v = value * scale;
     const float c[3] = {v.x, v.y, v.z};
     for (int k = 0; k < 3; ++k) {
-        const float x = c[k];
-        if (x == 0.0f)
+        if (c[k] == 0.0f)
             continue;
-        if (!(x < 0x1p127f)) {
+        if (!fixed_add128(accum + 6 * (ulong)pixel + 2 * k, c[k]))
             counter_add(counters, FEN_CTR_OVERFLOWS, 1);
-            continue;
-        }
-        /* x = hi 2^64 + lo exactly: x has 24 significant bits, so x - hi 2^64 is a float too */
-        const ulong hi = convert_ulong_rtz(x * 0x1p-64f);
-        const ulong lo = convert_ulong_rte(x - (float)hi * 0x1p64f);
-        volatile global ulong* word = accum + 6 * (ulong)pixel + 2 * k;
-        const ulong old = atom_add(word, lo);
-        const ulong carry = (old + lo < old) ? 1ul : 0ul;
-        if (hi + carry != 0ul)
-            atom_add(word + 1, hi + carry);
     }
+}
+
+/* A learning strategy's statistics (DESIGN.md §3.3): the luminance of a contribution that reached
+   the camera and its square, added to the emission cell its path started in, and a count. The
+   cells' probabilities are what these steer, never the image's expectation, so a value out of
+   range is dropped and counted (FEN_CTR_STATS_OVERFLOWS), costing efficiency, not bias. */
+static inline void cell_stats_add(volatile global ulong* cell_stats, uint cell, float3 value,
+                                  float scale, float scale_sq, volatile global ulong* counters)
+{
+    const float y = 0.2126f * value.x + 0.7152f * value.y + 0.0722f * value.z;
+    volatile global ulong* s = cell_stats + FEN_CELL_STATS_WORDS * (ulong)cell;
+    if (!fixed_add128(s + FEN_CELL_SUM_LO, y * scale) || !fixed_add128(s + FEN_CELL_SUMSQ_LO, y * y * scale_sq))
+        counter_add(counters, FEN_CTR_STATS_OVERFLOWS, 1);
+    atom_inc(s + FEN_CELL_CONNECTIONS);
 }
 
 #endif /* FEN_ACCUMULATE_H */

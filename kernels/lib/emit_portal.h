@@ -1,5 +1,5 @@
 /* emit_portal.h — the `portal` emission strategy (DESIGN.md §3.2, the paper's method 1; host half
- * and the derivation: host/emission/portal_emission.h).
+ * and the derivation: host/emission/portal_strategy.h).
  *
  * Per path: the joint table picks the sun or a sky cell (exact probabilities); v is the sun's
  * direction (or in its cone) or sampled in the cell proportionally to g; a portal group is chosen
@@ -30,6 +30,27 @@ typedef struct {
     uint group_count;
 } Portals;
 
+typedef struct {
+    SourceTable sources;
+    Sky sky;
+    Portals portals;
+    const global PortalParams* portal_params;
+} PortalEmitter;
+
+/* The strategy's kernel arguments after (params, counters, paths), and how kernels/emit_*.cl assemble
+   them. */
+#define FEN_PORTAL_ARGS                                                                          \
+    global const SourceParams *source_params, global const uint *source_alias,                   \
+        global const float *sky_theta, global const float *sky_phi, global const float *sky_values, \
+        global const float *sky_factor, global const PortalParams *portal_params,                \
+        global const float4 *portal_groups, global const uint *portal_range,                     \
+        global const ulong *portal_cdf, global const float4 *portal_vertices,                    \
+        global const BvhNode *portal_nodes, global const TriPacket4 *portal_packets
+#define FEN_PORTAL_EMITTER                                                                       \
+    portal_emitter(params, source_params, source_alias, sky_theta, sky_phi, sky_values,          \
+                   sky_factor, portal_params, portal_groups, portal_range, portal_cdf,           \
+                   portal_vertices, portal_nodes, portal_packets)
+
 static inline Portals portals_from(const global float4* groups, const global uint* range,
                                    const global ulong* triangle_cdf, const global float4* vertices,
                                    const global BvhNode* nodes, const global TriPacket4* packets,
@@ -44,6 +65,36 @@ static inline Portals portals_from(const global float4* groups, const global uin
     p.packets = packets;
     p.group_count = group_count;
     return p;
+}
+
+static inline PortalEmitter portal_emitter(
+    const global RenderParams* params, const global SourceParams* source_params,
+    const global uint* source_alias, const global float* sky_theta, const global float* sky_phi,
+    const global float* sky_values, const global float* sky_factor,
+    const global PortalParams* portal_params, const global float4* portal_groups,
+    const global uint* portal_range, const global ulong* portal_cdf,
+    const global float4* portal_vertices, const global BvhNode* portal_nodes,
+    const global TriPacket4* portal_packets)
+{
+    PortalEmitter e;
+    e.sources.params = source_params;
+    e.sources.alias = source_alias;
+    e.sky = sky_from(sky_theta, sky_phi, sky_values, sky_factor, params->sky_theta_nodes,
+                     params->sky_phi_nodes);
+    e.portals = portals_from(portal_groups, portal_range, portal_cdf, portal_vertices, portal_nodes,
+                             portal_packets, portal_params->groups);
+    e.portal_params = portal_params;
+    return e;
+}
+
+/* Uniform on portal triangle t from two uniforms. */
+static inline float3 portal_point(const Portals* portals, uint t, float u1, float u2)
+{
+    const float su = sqrt(u1);
+    const float b1 = su * (1.0f - u2), b2 = su * u2;
+    const float3 p0 = portals->vertices[3 * t].xyz, p1 = portals->vertices[3 * t + 1].xyz,
+                 p2 = portals->vertices[3 * t + 2].xyz;
+    return p0 + b1 * (p1 - p0) + b2 * (p2 - p0);
 }
 
 /* Index i in [0, n) with cdf[i] <= r < cdf[i+1] for an integer CDF of n + 1 entries (binary:
@@ -105,42 +156,31 @@ static inline uint portal_pick_triangle(const Portals* portals, float3 dir, uint
 }
 
 /* Fills *p with a new path; returns 0 when the candidate is rejected (overlap) or carries no light. */
-static inline int emit_portal(const global RenderParams* params, const Sky* sky,
-                              const SourceTable* sources, const Portals* portals, ulong path,
+static inline int emit_portal(const global RenderParams* params, const PortalEmitter* e, ulong path,
                               PathState* p)
 {
-    p->path_lo = (uint)path;
-    p->path_hi = (uint)(path >> 32);
-    p->depth = 0;
-    p->flags = FEN_PATH_ALIVE;
+    path_start(p, path);
     const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT);
     const RngBlock bits2 = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT_PORTAL);
     const float4 u2 = rng_unit24x4(bits2.y, bits2.z, bits2.w);
 
-    const uint entry = alias_pick(sources->alias, sources->shift, bits.x);
+    const uint entry = alias_pick(e->sources.alias, e->sources.params->alias_shift, bits.x);
     float3 beta;
-    const float3 dir = source_direction(params, sky, entry, fen_u32_to_unit(bits.z),
-                                        fen_u32_to_unit(bits.w), &beta);
+    const float3 dir = source_direction(params, &e->sky, e->sources.params, entry,
+                                        fen_u32_to_unit(bits.z), fen_u32_to_unit(bits.w), &beta);
     float scale;
-    const uint t = portal_pick_triangle(portals, dir, bits.y, bits2.x, &scale);
+    const uint t = portal_pick_triangle(&e->portals, dir, bits.y, bits2.x, &scale);
     if (t == FEN_INVALID_ID)
         return 0;
-
-    /* uniform on the triangle */
-    const float su = sqrt(u2.x);
-    const float b1 = su * (1.0f - u2.y), b2 = su * u2.y;
-    const float3 p0 = portals->vertices[3 * t].xyz, p1 = portals->vertices[3 * t + 1].xyz,
-                 p2 = portals->vertices[3 * t + 2].xyz;
-    const float3 x = p0 + b1 * (p1 - p0) + b2 * (p2 - p0);
-    const float back = length(x - params->sphere.xyz) + params->sphere.w;
-    const float3 origin = x - dir * back;
+    const float3 origin = origin_outside(params, portal_point(&e->portals, t, u2.x, u2.y), dir);
 
     beta *= scale;
-    if (params->portal_overlap != 2u) {
+    const uint overlap = e->portal_params->overlap;
+    if (overlap != FEN_OVERLAP_NONE) {
         /* overlap: N(x, v) portal triangles on the line */
         const RayPre r = ray_setup(origin, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
-        const uint n = max(bvh_count_hits(portals->nodes, portals->packets, &r), 1u);
-        if (params->portal_overlap == 1u)
+        const uint n = max(bvh_count_hits(e->portals.nodes, e->portals.packets, &r), 1u);
+        if (overlap == FEN_OVERLAP_WEIGHT)
             beta /= (float)n;
         else if (u2.z * (float)n >= 1.0f)
             return 0;

@@ -1,42 +1,69 @@
-/* emit_source.h — what both emission strategies share: the source table (the sun, or one sky
- * cell, from 32 random bits with exact probabilities; host: emission_setup.h) and the direction
- * that source sends light in, with the source's part of the path weight.
+/* emit_source.h — what every emission strategy shares (DESIGN.md §3): starting a path, the
+ * direction a source sends light in from two uniforms the caller hands over, the source table of
+ * `uniform` and `portal` (the sun, or one sky cell, from 32 random bits with exact probabilities;
+ * host: host/emission/source_table.h), and moving an origin back outside the scene.
  */
 #ifndef FEN_EMIT_SOURCE_H
 #define FEN_EMIT_SOURCE_H
 
 #include "lib/rng.h"
 #include "lib/sky.h"
+#include "shared/fen_emission.h"
 #include "shared/fen_render.h"
 
 typedef struct {
+    const global SourceParams* params;
     const global uint* alias; /* entry 0 the sun, 1 + k sky cell k (lib/sampling.h alias_pick) */
-    uint shift;
 } SourceTable;
 
-static inline SourceTable source_table(const global uint* alias, uint shift)
+/* A fresh path with index `path`; the strategy fills org, dir and beta. */
+static inline void path_start(PathState* p, ulong path)
 {
-    SourceTable t;
-    t.alias = alias;
-    t.shift = shift;
-    return t;
+    p->path_lo = (uint)path;
+    p->path_hi = (uint)(path >> 32);
+    p->depth = 0;
+    p->flags = FEN_PATH_ALIVE;
+}
+
+/* The sun's direction of travel: its axis, or uniform in its cone (u1, u2 in [0, 1)). */
+static inline float3 sun_direction(const global RenderParams* params, float u1, float u2)
+{
+    const float3 axis = params->sun_dir.xyz;
+    return params->sun_dir.w < 1.0f ? sample_cone(axis, params->sun_dir.w, u1, u2) : axis;
 }
 
 /* Direction of travel for table entry `entry` (u1, u2 uniform in [0, 1)). *weight: for the sun
-   params->sun_weight, for sky cell k factor_k sin(theta) (lib/sky.h); the strategy multiplies in
-   its own part (pi R^2, or the portals' projected area). */
-static inline float3 source_direction(const global RenderParams* params, const Sky* sky, uint entry,
-                                      float u1, float u2, float3* weight)
+   src->sun_weight, for sky cell k factor_k sin(theta) src->sky_scale (lib/sky.h); the strategy
+   multiplies in its geometric part. */
+static inline float3 source_direction(const global RenderParams* params, const Sky* sky,
+                                      const global SourceParams* src, uint entry, float u1,
+                                      float u2, float3* weight)
 {
     if (entry == 0) {
-        const float3 axis = params->sun_dir.xyz;
-        *weight = params->sun_weight.xyz;
-        return params->sun_dir.w < 1.0f ? sample_cone(axis, params->sun_dir.w, u1, u2) : axis;
+        *weight = src->sun_weight.xyz;
+        return sun_direction(params, u1, u2);
     }
     float w;
     const float3 to_sky = sky_sample(sky, entry - 1, u1, u2, &w);
-    *weight = (float3)(w);
+    *weight = (float3)(w) * src->sky_scale;
     return -to_sky;
+}
+
+/* The start of the light's line through x along dir, outside the scene's bounding sphere. */
+static inline float3 origin_outside(const global RenderParams* params, float3 x, float3 dir)
+{
+    const float back = length(x - params->sphere.xyz) + params->sphere.w;
+    return x - dir * back;
+}
+
+/* The start of a ray along dir through point d (units of the sphere's radius) of the disk that
+   covers the sphere, orthogonal to dir and spanned by t1, t2; 1 % beyond the sphere. */
+static inline float3 disk_ray_origin(const global RenderParams* params, float3 dir, float3 t1,
+                                     float3 t2, float2 d_unit)
+{
+    const float radius = params->sphere.w;
+    const float2 d = d_unit * radius;
+    return params->sphere.xyz + d.x * t1 + d.y * t2 - dir * (1.01f * radius);
 }
 
 #endif /* FEN_EMIT_SOURCE_H */

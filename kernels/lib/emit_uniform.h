@@ -6,36 +6,59 @@
  * covers the scene's bounding sphere, moved back outside it. The weight is the emitted radiance
  * over the density of (origin, direction): for the sun E pi R^2 / P(sun), for the sky
  * pi R^2 g / p(v) = pi R^2 factor_k sin(theta).
+ * Host half: host/emission/uniform_strategy.h.
  */
 #ifndef FEN_EMIT_UNIFORM_H
 #define FEN_EMIT_UNIFORM_H
 
 #include "lib/emit_source.h"
 
-static inline PathState emit_uniform(const global RenderParams* params, const Sky* sky,
-                                     const SourceTable* sources, ulong path)
+typedef struct {
+    SourceTable sources;
+    Sky sky;
+} UniformEmitter;
+
+/* The strategy's kernel arguments after (params, counters, paths), and how kernels/emit_*.cl assemble
+   them. */
+#define FEN_UNIFORM_ARGS                                                                        \
+    global const SourceParams *source_params, global const uint *source_alias,                  \
+        global const float *sky_theta, global const float *sky_phi, global const float *sky_values, \
+        global const float *sky_factor
+#define FEN_UNIFORM_EMITTER                                                                     \
+    uniform_emitter(params, source_params, source_alias, sky_theta, sky_phi, sky_values, sky_factor)
+
+static inline UniformEmitter uniform_emitter(const global RenderParams* params,
+                                             const global SourceParams* source_params,
+                                             const global uint* source_alias,
+                                             const global float* sky_theta,
+                                             const global float* sky_phi,
+                                             const global float* sky_values,
+                                             const global float* sky_factor)
 {
-    PathState p;
-    p.path_lo = (uint)path;
-    p.path_hi = (uint)(path >> 32);
-    p.depth = 0;
-    p.flags = FEN_PATH_ALIVE;
-    const RngBlock bits = rng_path_bits(params->seed, p.path_lo, p.path_hi, 0, FEN_RNG_EMIT);
+    UniformEmitter e;
+    e.sources.params = source_params;
+    e.sources.alias = source_alias;
+    e.sky = sky_from(sky_theta, sky_phi, sky_values, sky_factor, params->sky_theta_nodes,
+                     params->sky_phi_nodes);
+    return e;
+}
+
+/* Fills *p with path `path`; always emits. */
+static inline int emit_uniform(const global RenderParams* params, const UniformEmitter* e,
+                               ulong path, PathState* p)
+{
+    path_start(p, path);
+    const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT);
     const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
-    const uint entry = alias_pick(sources->alias, sources->shift, bits.x);
+    const uint entry = alias_pick(e->sources.alias, e->sources.params->alias_shift, bits.x);
     float3 weight;
-    const float3 dir = source_direction(params, sky, entry, u.z, u.w, &weight);
-    if (entry != 0)
-        weight *= params->sky_weight.x;
-    const float radius = params->sphere.w;
+    const float3 dir = source_direction(params, &e->sky, e->sources.params, entry, u.z, u.w, &weight);
     float3 t1, t2;
     orthonormal_basis(dir, &t1, &t2);
-    const float2 d = sample_disk(u.x, u.y) * radius;
-    const float3 origin = params->sphere.xyz + d.x * t1 + d.y * t2 - dir * (1.01f * radius);
-    p.org = (float4)(origin, 0.0f);
-    p.dir = (float4)(dir, 0.0f);
-    p.beta = (float4)(weight, 0.0f);
-    return p;
+    p->org = (float4)(disk_ray_origin(params, dir, t1, t2, sample_disk(u.x, u.y)), 0.0f);
+    p->dir = (float4)(dir, 0.0f);
+    p->beta = (float4)(weight, 0.0f);
+    return 1;
 }
 
 #endif /* FEN_EMIT_UNIFORM_H */

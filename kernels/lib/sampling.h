@@ -15,6 +15,32 @@ static inline float2 sample_disk(float u1, float u2)
     return (float2)(r * cospi(2.0f * u2), r * sinpi(2.0f * u2));
 }
 
+/* Uniform on the unit disk by the concentric map (Shirley and Chiu 1997): density 1/pi, and it
+   maps boxes of [0,1)^2 to compact pieces of the disk (the polar map of sample_disk turns a box
+   into a thin ring sector, a sliver near the centre) -- the adaptive strategy's cells are boxes. */
+static inline float2 sample_disk_concentric(float u1, float u2)
+{
+    const float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
+    if (a == 0.0f && b == 0.0f)
+        return (float2)(0.0f);
+    float r, t; /* t: polar angle in units of pi */
+    if (fabs(a) > fabs(b)) {
+        r = a;
+        t = 0.25f * (b / a);
+    } else {
+        r = b;
+        t = 0.5f - 0.25f * (a / b);
+    }
+    return (float2)(r * cospi(t), r * sinpi(t));
+}
+
+/* Two uniforms in (0, 1) from the two halves of 32 random bits, at the centres of 2^16 steps: a
+   cell of the adaptive grid is a box, so 16 bits across it are plenty. */
+static inline float2 unit16x2(uint bits)
+{
+    return ((float2)((float)(bits >> 16), (float)(bits & 0xFFFFu)) + 0.5f) * (1.0f / 65536.0f);
+}
+
 /* Two unit vectors completing n (unit) to an orthonormal basis (Duff et al., JCGT 2017). */
 static inline void orthonormal_basis(float3 n, float3* t1, float3* t2)
 {
@@ -23,6 +49,22 @@ static inline void orthonormal_basis(float3 n, float3* t1, float3* t2)
     const float b = n.x * n.y * a;
     *t1 = (float3)(1.0f + s * n.x * n.x * a, s * b, -s * n.x);
     *t2 = (float3)(b, s + n.y * n.y * a, -n.y);
+}
+
+/* An orthonormal basis (t1, t2) of the plane orthogonal to unit n that varies continuously with n
+   everywhere but at n = +y: Duff et al.'s construction in the frame (x, z, -y). Light travels
+   downwards (n.y < 0), so nearby directions of travel always get nearby bases -- what the
+   adaptive strategy needs, since it learns where on the disk spanned by (t1, t2) light matters.
+   (orthonormal_basis flips at n.z = 0, which would split a bin of directions in two.) */
+static inline void travel_basis(float3 n, float3* t1, float3* t2)
+{
+    const float3 m = (float3)(n.x, n.z, -n.y);
+    const float a = -1.0f / (1.0f + m.z);
+    const float b = m.x * m.y * a;
+    const float3 s1 = (float3)(1.0f + m.x * m.x * a, b, -m.x);
+    const float3 s2 = (float3)(b, 1.0f + m.y * m.y * a, -m.y);
+    *t1 = (float3)(s1.x, -s1.z, s1.y);
+    *t2 = (float3)(s2.x, -s2.z, s2.y);
 }
 
 /* Cosine-weighted direction around unit n: density cos(theta)/pi per steradian. */

@@ -49,6 +49,20 @@ static inline uint sky_node_search(const global float* nodes, uint n, float x)
     return lo;
 }
 
+/* Luminance at zenith angle theta in [0, pi/2] and azimuth phi in [0, 2 pi] (radians). */
+static inline float sky_eval_angles(const Sky* s, float theta, float phi)
+{
+    if (s->nt < 2)
+        return 0.0f;
+    const uint i = sky_node_search(s->theta, s->nt, theta);
+    const uint j = sky_node_search(s->phi, s->np, phi);
+    const float st = clamp((theta - s->theta[i]) / (s->theta[i + 1] - s->theta[i]), 0.0f, 1.0f);
+    const float sp = clamp((phi - s->phi[j]) / (s->phi[j + 1] - s->phi[j]), 0.0f, 1.0f);
+    const global float* row0 = s->values + i * s->np;
+    const global float* row1 = row0 + s->np;
+    return mix(mix(row0[j], row0[j + 1], sp), mix(row1[j], row1[j + 1], sp), st);
+}
+
 /* Luminance arriving from direction `to_sky` (unit, pointing at the sky). */
 static inline float sky_eval(const Sky* s, float3 to_sky)
 {
@@ -58,13 +72,7 @@ static inline float sky_eval(const Sky* s, float3 to_sky)
     float phi = atan2(to_sky.x, -to_sky.z);
     if (phi < 0.0f)
         phi += 2.0f * FEN_PI;
-    const uint i = sky_node_search(s->theta, s->nt, theta);
-    const uint j = sky_node_search(s->phi, s->np, phi);
-    const float st = clamp((theta - s->theta[i]) / (s->theta[i + 1] - s->theta[i]), 0.0f, 1.0f);
-    const float sp = clamp((phi - s->phi[j]) / (s->phi[j + 1] - s->phi[j]), 0.0f, 1.0f);
-    const global float* row0 = s->values + i * s->np;
-    const global float* row1 = row0 + s->np;
-    return mix(mix(row0[j], row0[j + 1], sp), mix(row1[j], row1[j + 1], sp), st);
+    return sky_eval_angles(s, theta, phi);
 }
 
 /* A direction towards the sky in cell k with the density above; *weight = factor[k] sin(theta),

@@ -9,6 +9,7 @@
 #define FEN_LAYOUT_H
 
 #include "shared/fen_bvh.h"
+#include "shared/fen_emission.h"
 #include "shared/fen_render.h"
 
 #define FEN_SHARED_LAYOUT(X) \
@@ -30,11 +31,21 @@
     X(PathState, path_lo)    \
     X(PathState, flags)      \
     X(Connection, value)     \
-    X(RenderParams, sky_weight) \
+    X(RenderParams, sun_dir) \
     X(RenderParams, path_end) \
     X(RenderParams, seed)    \
     X(RenderParams, fixed_scale) \
+    X(RenderParams, stats_scale) \
     X(RenderParams, batch)   \
-    X(RenderParams, source_alias_shift)
+    X(SourceParams, sky_scale) \
+    X(SourceParams, alias_shift) \
+    X(PortalParams, overlap) \
+    X(AdaptiveCell, box)     \
+    X(AdaptiveCell, dirs)    \
+    X(AdaptiveCell, weight)  \
+    X(PortalFrame, normal)   \
+    X(PortalFrame, triangles) \
+    X(AdaptiveParams, cell_alias_shift) \
+    X(AdaptiveParams, portal_base)
 
 #endif /* FEN_LAYOUT_H */

@@ -1,10 +1,12 @@
 /* fen_render.h — device layout of everything the light-tracing wavefront reads and writes.
  *
  * One declaration for host and device (see fen_types.h). The wavefront (DESIGN.md §4) keeps a
- * pool of PathState slots; per iteration: emit.cl refills dead slots, intersect.cl finds each
- * path's next hit, shade.cl connects diffuse hits to the camera (a Connection per slot) and
- * scatters, connect.cl traces the connections and splats them into 128-bit fixed-point pixel
- * accumulators (lib/accumulate.h). camera_pass.cl adds what the camera sees of the sky directly.
+ * pool of PathState slots; per iteration: emit_<strategy>.cl refills dead slots (the strategy
+ * compiled into it: shared/fen_emission.h), intersect.cl finds each path's next hit, shade.cl
+ * connects diffuse hits to the camera (a Connection per slot) and scatters, connect.cl traces the
+ * connections and splats them into 128-bit fixed-point pixel accumulators (lib/accumulate.h) --
+ * and, for a learning strategy, adds each connection's squared luminance to the emission cell the
+ * path started in. camera_pass.cl adds what the camera sees of the sky directly.
  * Invariants: every struct is a multiple of 16 bytes, members ordered 16 -> 8 -> 4 bytes;
  * fen_u64 members sit at 8-byte offsets. All listed in fen_layout.h for the layout probe.
  */
@@ -31,7 +33,9 @@
 #define FEN_CTR_MAX_DEPTH 7        /* paths cut by --max-bounces (bias, reported) */
 #define FEN_CTR_EMITTED 8          /* paths that started (a rejected portal candidate does not) */
 #define FEN_CTR_CAMERA_GLASS_CUT 9 /* camera samples stopped after 16 glass sheets (bias, reported) */
-#define FEN_CTR_COUNT 10
+#define FEN_CTR_STATS_OVERFLOWS 10 /* emission statistics beyond their 128-bit range (dropped) */
+#define FEN_CTR_COUNT 11
+
 
 FEN_NS_BEGIN
 
@@ -66,7 +70,8 @@ FEN_ASSERT_SIZE(SurfaceHit, 32);
 typedef struct {
     fen_float4 org;   /* xyz: ray origin (m) */
     fen_float4 dir;   /* xyz: unit direction of travel */
-    fen_float4 beta;  /* rgb: path weight (flux per path, in lm with luminance-valued channels) */
+    fen_float4 beta;  /* rgb: path weight (flux per path, in lm with luminance-valued channels);
+                         w: as_uint emission cell the path started in (learning strategies) */
     fen_u32 path_lo;  /* path index, 64-bit: the RNG counter of the path */
     fen_u32 path_hi;
     fen_u32 depth;    /* surface interactions so far */
@@ -78,36 +83,33 @@ FEN_ASSERT_OFFSET(PathState, path_lo, 48);
 typedef struct {
     fen_float4 org;     /* xyz: shadow-ray origin (offset off the surface); w: as_uint pixel or FEN_INVALID_ID */
     fen_float4 to_cam;  /* xyz: camera position - org, the segment t in (0, 1) */
-    fen_float4 value;   /* rgb: contribution to the pixel (cd/m^2 x paths) if nothing blocks it */
+    fen_float4 value;   /* rgb: contribution to the pixel (cd/m^2 x paths) if nothing blocks it;
+                           w: the path's beta.w (its emission cell) */
 } Connection;
 FEN_ASSERT_SIZE(Connection, 48);
 
-/* Per-batch parameters, in a one-element buffer (never a by-value struct argument). */
+/* Per-batch parameters of the wavefront, in a one-element buffer (never a by-value struct
+   argument). What an emission strategy needs beyond the scene lives in its own buffer
+   (shared/fen_emission.h). */
 typedef struct {
     fen_float4 sphere;       /* xyz: centre of the scene's bounding sphere; w: its radius (m) */
     fen_float4 sun_dir;      /* xyz: direction the sunlight travels (unit); w: cos(angular radius) */
-    fen_float4 sun_weight;   /* rgb: weight of a sun path, E pi R^2 / P(sun) */
-    fen_float4 sky_weight;   /* x: pi R^2, times a sky cell's factor and sin(theta) */
     fen_u64 path_end;        /* one past the last path index of this batch */
     fen_u32 seed;
     fen_u32 max_depth;
-    fen_u32 source_alias_shift; /* the source alias table has 2^(32 - shift) columns */
     fen_f32 fixed_scale;     /* pixel accumulators hold round(value * fixed_scale), 128-bit */
-    fen_u32 pad0;
-    fen_u32 sky_theta_nodes;
+    fen_f32 stats_scale;     /* cell statistics hold round(Y^2 * stats_scale), 128-bit; 0: none */
+    fen_u32 sky_theta_nodes; /* the scene's sky, as the camera pass reads it */
     fen_u32 sky_phi_nodes;
     fen_u32 pool_size;
     fen_u32 camera_spp;      /* camera-pass samples per pixel in this batch */
     fen_u32 batch;           /* batch number, for the camera pass's random numbers */
-    fen_u32 portal_groups;   /* portal strategy: number of portal plane groups */
-    fen_u32 portal_overlap;  /* portal strategy: 0 reject, 1 weight by 1/N, 2 none (biased) */
-    fen_u32 pad1;
-    fen_u32 pad2;
+    fen_u32 pad0;
 } RenderParams;
-FEN_ASSERT_SIZE(RenderParams, 128);
-FEN_ASSERT_OFFSET(RenderParams, path_end, 64);
-FEN_ASSERT_OFFSET(RenderParams, seed, 72);
-FEN_ASSERT_OFFSET(RenderParams, batch, 108);
+FEN_ASSERT_SIZE(RenderParams, 80);
+FEN_ASSERT_OFFSET(RenderParams, path_end, 32);
+FEN_ASSERT_OFFSET(RenderParams, seed, 40);
+FEN_ASSERT_OFFSET(RenderParams, batch, 72);
 
 FEN_NS_END
 

@@ -172,19 +172,28 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
     const auto g = buildSky(scene.sky);
     const SkyTables sky = makeSkyTables(g);
     const PortalEmission pe = setupPortalEmission(scene, sky, g, "", 8);
-    const EmissionSetup ue = setupUniformEmission(scene, sky);
     dev::RenderParams p{};
-    fillEmissionParams(ue, sky, p);
+    glm::dvec3 centre;
+    double radius;
+    emissionSphere(scene, &centre, &radius);
+    p.sphere = {float(centre.x), float(centre.y), float(centre.z), float(radius)};
     p.sun_dir = {float(scene.sun.travelDirection.x), float(scene.sun.travelDirection.y),
                  float(scene.sun.travelDirection.z), 1.0f};
-    fillPortalParams(pe, PortalOverlap::Weight, p);
+    p.sky_theta_nodes = sky.thetaNodes;
+    p.sky_phi_nodes = sky.phiNodes;
     p.seed = 3;
+    const dev::SourceParams sp = sourceParams(pe.sources, pe.sunWeight, 1.0);
+    dev::PortalParams pp{};
+    pp.groups = static_cast<std::uint32_t>(pe.groups.size());
+    pp.overlap = FEN_OVERLAP_WEIGHT;
     DeviceBvh pbvh(*ctx, pe.bvh);
     const std::uint32_t n = 1u << 20;
     auto buf = [&](const auto& v, const char* what) {
         return ctx->buffer(CL_MEM_READ_ONLY, v.size() * sizeof(v[0]), what, v.data());
     };
     cl::Buffer params = ctx->buffer(CL_MEM_READ_ONLY, sizeof p, "params", &p);
+    cl::Buffer sourceParams = ctx->buffer(CL_MEM_READ_ONLY, sizeof sp, "source params", &sp);
+    cl::Buffer portalParams = ctx->buffer(CL_MEM_READ_ONLY, sizeof pp, "portal params", &pp);
     cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "weights");
     cl::Kernel k(ctx->program("test_portal_probes.cl", {"FEN_BVH_WIDTH=8"}), "portal_emit_probe");
     // Named: clSetKernelArg does not keep a buffer alive.
@@ -193,8 +202,8 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
                      alias = buf(pe.sources.alias, "alias"),
                      groups = buf(pe.groups, "groups"), range = buf(pe.groupRange, "range"),
                      tcdf = buf(pe.triangleCdf, "tcdf"), verts = buf(pe.vertices, "verts");
-    ocl::setKernelArgs(k, params, theta, phi, values, factor, alias, groups, range, tcdf, verts,
-                       pbvh.nodes(), pbvh.packets(), out, n);
+    ocl::setKernelArgs(k, params, sourceParams, alias, theta, phi, values, factor, portalParams, groups,
+                       range, tcdf, verts, pbvh.nodes(), pbvh.packets(), out, n);
     ocl::launch(*ctx, k, "portal_emit_probe", n);
     std::vector<cl_float4> w(n);
     ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, w.size() * 16, w.data());

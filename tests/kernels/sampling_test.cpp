@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "cl/launch.h"
-#include "render/emission_setup.h"
+#include "emission/source_table.h"
 #include "sky/goniogram.h"
 #include "support/cl_fixture.h"
 #include "support/statistics.h"

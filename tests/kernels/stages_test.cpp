@@ -46,9 +46,13 @@ struct Stages {
         std::vector<dev::Connection> connections;
         std::vector<std::uint64_t> accum;
         std::vector<std::uint64_t> counters;
+        std::vector<std::uint64_t> cellStats;  // with statsScale > 0: FEN_CELL_STATS_WORDS per part
     };
 
-    Out run(const std::vector<dev::PathState>& in, float fixedScale = 1.0f)
+    // statsScale > 0: connect.cl built to gather emission-cell statistics (a learning strategy's),
+    // into `parts` parts.
+    Out run(const std::vector<dev::PathState>& in, float fixedScale = 1.0f, float statsScale = 0.0f,
+            std::size_t parts = 1)
     {
         const auto n = static_cast<std::uint32_t>(in.size());
         dev::RenderParams p{};
@@ -56,6 +60,7 @@ struct Stages {
         p.max_depth = 64;
         p.pool_size = n;
         p.fixed_scale = fixedScale;
+        p.stats_scale = statsScale;
         cl::Buffer params = ctx.buffer(CL_MEM_READ_ONLY, sizeof p, "params", &p);
         cl::Buffer paths = ctx.buffer(CL_MEM_READ_WRITE, n * sizeof(dev::PathState), "paths", in.data());
         cl::Buffer hits = ctx.buffer(CL_MEM_READ_WRITE, n * sizeof(dev::SurfaceHit), "hits");
@@ -64,15 +69,20 @@ struct Stages {
         std::vector<std::uint64_t> zeros(FEN_CTR_COUNT, 0), accZero(std::size_t(width) * height * 6, 0);
         cl::Buffer counters = ctx.buffer(CL_MEM_READ_WRITE, zeros.size() * 8, "counters", zeros.data());
         cl::Buffer accum = ctx.buffer(CL_MEM_READ_WRITE, accZero.size() * 8, "accum", accZero.data());
+        std::vector<std::uint64_t> statsZero(parts * FEN_CELL_STATS_WORDS, 0);
+        cl::Buffer stats = ctx.buffer(CL_MEM_READ_WRITE, statsZero.size() * 8, "cell stats", statsZero.data());
         const auto defs = ds.defines();
+        auto connectDefs = defs;
+        if (statsScale > 0.0f)
+            connectDefs.push_back("FEN_EMISSION_STATS=1");
         cl::Kernel isect(ctx.program("intersect.cl", defs), "intersect_paths");
         cl::Kernel shade(ctx.program("shade.cl", defs), "shade_paths");
-        cl::Kernel connect(ctx.program("connect.cl", defs), "connect_paths");
+        cl::Kernel connect(ctx.program("connect.cl", connectDefs), "connect_paths");
         ocl::setKernelArgs(isect, paths, hits, n, ds.bvh().nodes(), ds.bvh().packets());
         ocl::setKernelArgs(shade, params, paths, hits, ds.primMaterial(), ds.materials(), camBuf, conns,
                            counters);
         ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.primMaterial(),
-                           ds.materials(), accum, counters);
+                           ds.materials(), accum, stats, counters);
         ocl::launch(ctx, isect, "intersect_paths", n);
         ocl::launch(ctx, shade, "shade_paths", n);
         ocl::launch(ctx, connect, "connect_paths", n);
@@ -86,6 +96,8 @@ struct Stages {
         q.enqueueReadBuffer(conns, CL_FALSE, 0, n * sizeof(dev::Connection), o.connections.data());
         q.enqueueReadBuffer(accum, CL_FALSE, 0, o.accum.size() * 8, o.accum.data());
         q.enqueueReadBuffer(counters, CL_TRUE, 0, o.counters.size() * 8, o.counters.data());
+        o.cellStats.resize(statsZero.size());
+        q.enqueueReadBuffer(stats, CL_TRUE, 0, o.cellStats.size() * 8, o.cellStats.data());
         return o;
     }
 };
@@ -177,6 +189,53 @@ TEST(Stages, SplatFormulaAndSideRule)
                 << "pixel " << px << " channel " << ch;
         }
     EXPECT_EQ(out.counters[FEN_CTR_SHADOW_RAYS], std::uint64_t(checked));
+}
+
+TEST(Stages, ContributionsFeedTheEmissionCellTheyCameFrom)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // A learning strategy's paths carry their emission cell part in beta.w; connect.cl adds each
+    // contribution's luminance Y (at the pixels' scale) and Y^2 (at stats_scale) to that part, in
+    // 128-bit fixed point, and counts it. Three parts, paths spread over them.
+    test::SceneBuilder b;
+    b.add("plane", rect({-2, 0, -2}, {4, 0, 0}, {0, 0, 4}), b.material("grey", glm::vec3(0.5f)));
+    b.camera({0.0, 2.0, 0.5}, {0.0, 0.0, 0.0}, {0, 0, -1}, 60.0);
+    Stages st(*ctx, b.build(), 32, 24);
+    std::vector<dev::PathState> in;
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    for (std::uint32_t i = 0; i < 300; ++i) {
+        const glm::vec3 x(u(rng), 0.0f, u(rng));
+        dev::PathState p = path(x + glm::vec3(0.1f, 1.0f, 0.0f), glm::vec3(-0.1f, -1.0f, 0.0f),
+                                glm::vec3(50.0f + i, 80.0f, 20.0f), i);
+        const std::uint32_t part = i % 3;
+        std::memcpy(&p.beta.w, &part, 4);
+        in.push_back(p);
+    }
+    const float scale = 64.0f, scaleSq = 1.0f / 4096.0f;
+    const auto out = st.run(in, scale, scaleSq, 3);
+    double sum[3] = {}, sumSq[3] = {}, n[3] = {};
+    for (const auto& c : out.connections) {
+        if (asUint(c.org.w) == FEN_INVALID_ID)
+            continue;
+        const std::uint32_t part = asUint(c.value.w);
+        ASSERT_LT(part, 3u) << "the connection lost its cell";
+        const double y = 0.2126 * c.value.x + 0.7152 * c.value.y + 0.0722 * c.value.z;
+        sum[part] += y * scale;
+        sumSq[part] += y * y * scaleSq;
+        n[part] += 1.0;
+    }
+    for (int k = 0; k < 3; ++k) {
+        const std::uint64_t* w = out.cellStats.data() + FEN_CELL_STATS_WORDS * k;
+        ASSERT_GT(n[k], 10.0);
+        EXPECT_EQ(w[FEN_CELL_CONNECTIONS], std::uint64_t(n[k]));
+        EXPECT_EQ(w[FEN_CELL_PATHS], 0u) << "paths are counted where they are emitted, not here";
+        EXPECT_EQ(w[FEN_CELL_SUM_HI], 0u);
+        EXPECT_NEAR(double(w[FEN_CELL_SUM_LO]), sum[k], 0.5 * n[k] + 1e-6 * sum[k]);
+        EXPECT_NEAR(double(w[FEN_CELL_SUMSQ_LO]) + 18446744073709551616.0 * double(w[FEN_CELL_SUMSQ_HI]),
+                    sumSq[k], 0.5 * n[k] + 1e-6 * sumSq[k]);
+    }
+    EXPECT_EQ(out.counters[FEN_CTR_STATS_OVERFLOWS], 0u);
 }
 
 TEST(Stages, ScatterStaysOnTheLitSideAndKeepsWeight)

@@ -22,8 +22,8 @@ double Y(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 void expectClean(const RenderResult& r)
 {
-    EXPECT_EQ(r.badContributions, 0u);
-    EXPECT_EQ(r.overflows, 0u);
+    EXPECT_EQ(r.counts.badContributions, 0u);
+    EXPECT_EQ(r.counts.overflows, 0u);
     for (float v : r.image.rgb)
         ASSERT_TRUE(std::isfinite(v));
 }

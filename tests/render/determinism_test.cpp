@@ -33,8 +33,8 @@ TEST(Determinism, SameSeedGivesBitIdenticalImages)
     const RenderResult b = renderRoom(*ctx, 7, 1u << 15);
     ASSERT_EQ(a.image.rgb.size(), b.image.rgb.size());
     EXPECT_EQ(0, std::memcmp(a.image.rgb.data(), b.image.rgb.data(), a.image.rgb.size() * 4));
-    EXPECT_EQ(a.extensionRays, b.extensionRays);
-    EXPECT_EQ(a.shadowRays, b.shadowRays);
+    EXPECT_EQ(a.counts.extensionRays, b.counts.extensionRays);
+    EXPECT_EQ(a.counts.shadowRays, b.counts.shadowRays);
     double sum = 0.0;
     for (float v : a.image.rgb)
         sum += v;

@@ -1,6 +1,7 @@
-// emission_setup.h — the host half of the `uniform` strategy (DESIGN.md §3.1): the emission disk,
-// the choice of source (the sun, or one cell of the sky), path weights, and the sky's arrays
-// (kernels/lib/emit_uniform.h, lib/sky.h and lib/sampling.h are the device half).
+// source_table.h — what the emission strategies draw light sources from (DESIGN.md §3.1): the
+// sky's arrays (host and device), the integer tables that choose a source, and the `uniform`
+// strategy's emission disk, source choice and path weights (kernels/lib/emit_source.h,
+// lib/emit_uniform.h, lib/sky.h and lib/sampling.h are the device half).
 //
 // One integer table chooses both the source and the sky cell from a path's first 32 random bits:
 // entry 0 is the sun, entry 1 + k is sky cell k, each with probability n_e / 2^32 exactly, so the
@@ -12,8 +13,9 @@
 #include <optional>
 #include <vector>
 
+#include "cl/context.h"
 #include "scene/scene.h"
-#include "shared/fen_render.h"
+#include "shared/fen_emission.h"
 #include "sky/goniogram.h"
 
 namespace fen {
@@ -28,6 +30,13 @@ struct SkyTables {
     double maxLuminance_cd_m2 = 0.0;
 };
 SkyTables makeSkyTables(const std::optional<Goniogram>& sky);
+
+// The node angles and luminances of a SkyTables on the device (lib/sky.h), shared by the camera
+// pass and the strategies that sample the scene's sky.
+struct DeviceSky {
+    DeviceSky(ocl::Context& ctx, const SkyTables& t);
+    cl::Buffer theta, phi, values;
+};
 
 // An integer CDF over n entries (cdf[0] = 0 .. cdf[n] = 2^32): entry e has probability
 // (cdf[e+1] - cdf[e]) / 2^32 exactly. The device draws from it with one read: an alias table of
@@ -49,7 +58,9 @@ struct IntegerCdf {
 // the alias table, not needed for binary searches.
 IntegerCdf makeIntegerCdf(const std::vector<double>& weight, bool alias = true);
 
-struct EmissionSetup {
+// The `uniform` strategy's sources: the emission disk covering the scene's bounding sphere, the
+// table choosing the sun or a sky cell in proportion to its flux through the disk, and weights.
+struct UniformSources {
     glm::dvec3 sphereCentre{0.0};
     double sphereRadius_m = 0.0;
     double sunFlux = 0.0;          // luminous flux through the emission disk (lm)
@@ -59,12 +70,26 @@ struct EmissionSetup {
     std::vector<float> skyFactor;  // per sky cell: B_k / P(entry 1 + k), see lib/sky.h
     glm::dvec3 sunWeight{0.0};     // rgb weight of a sun path: E pi R^2 / P(sun)
     double skyWeight = 0.0;        // pi R^2: times factor_k sin(theta) for a sky path
-    double referenceLuminance_cd_m2 = 1.0;  // brightest plausible diffuse luminance (fixed-point scale)
 };
 
-EmissionSetup setupUniformEmission(const Scene& scene, const SkyTables& sky);
+UniformSources setupUniformEmission(const Scene& scene, const SkyTables& sky);
 
-// Writes the emission fields of `p` (sphere, sun, sky sizes, source alias shift).
-void fillEmissionParams(const EmissionSetup& e, const SkyTables& sky, dev::RenderParams& p);
+// The sphere every emitted path starts outside of: the scene's bounding sphere, a little larger
+// (rays must start outside it and the disk must cover every triangle's projection).
+void emissionSphere(const Scene& scene, glm::dvec3* centre, double* radius_m);
+
+// The brightest plausible diffuse luminance of the scene (cd/m^2): what fixed-point scales are
+// set against (max of E_sun / pi and the sky's brightest node).
+double referenceLuminance(const Scene& scene, const SkyTables& sky);
+
+// The normal illuminance of the sun as luminance-weighted lux (Y of its RGB; 0 without a sun).
+double sunIlluminanceY_lux(const Scene& scene);
+
+// A disk sun's directions are uniform in its cone, so a plane facing it receives E (1 + cos a) / 2
+// per unit weight: this restores its normal illuminance E.
+double sunConeFactor(const Sun& sun);
+
+// The device parameters of a source table (kernels/shared/fen_emission.h SourceParams).
+dev::SourceParams sourceParams(const IntegerCdf& sources, const glm::dvec3& sunWeight, double skyScale);
 
 }  // namespace fen

@@ -1,5 +1,6 @@
-// emission_setup.cpp — uniform emission parameters and sky arrays (emission_setup.h).
-#include "render/emission_setup.h"
+// source_table.cpp — sky arrays, integer source tables and the uniform strategy's sources
+// (source_table.h).
+#include "emission/source_table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -105,20 +106,45 @@ SkyTables makeSkyTables(const std::optional<Goniogram>& sky)
     return t;
 }
 
-EmissionSetup setupUniformEmission(const Scene& scene, const SkyTables& sky)
+DeviceSky::DeviceSky(ocl::Context& ctx, const SkyTables& t)
+    : theta(ctx.buffer(CL_MEM_READ_ONLY, t.theta.size() * 4, "sky nodes", t.theta.data())),
+      phi(ctx.buffer(CL_MEM_READ_ONLY, t.phi.size() * 4, "sky nodes", t.phi.data())),
+      values(ctx.buffer(CL_MEM_READ_ONLY, t.values.size() * 4, "sky luminances", t.values.data()))
 {
-    EmissionSetup e;
+}
+
+void emissionSphere(const Scene& scene, glm::dvec3* centre, double* radius_m)
+{
+    *centre = glm::dvec3(0.0);
+    *radius_m = 0.0;
     const Aabb& b = scene.bounds;
     if (!b.empty()) {
-        e.sphereCentre = glm::dvec3(b.center());
-        e.sphereRadius_m = 0.5 * glm::length(glm::dvec3(b.extent()));
+        *centre = glm::dvec3(b.center());
+        *radius_m = 0.5 * glm::length(glm::dvec3(b.extent()));
     }
-    // A little margin: rays must start outside the sphere and cover every triangle's projection.
-    e.sphereRadius_m = e.sphereRadius_m * 1.001 + 1e-3;
+    *radius_m = *radius_m * 1.001 + 1e-3;
+}
+
+double sunIlluminanceY_lux(const Scene& scene)
+{
+    const glm::dvec3 E = scene.sun.present ? scene.sun.illuminanceRgb_lux : glm::dvec3(0.0);
+    return 0.2126 * E.r + 0.7152 * E.g + 0.0722 * E.b;
+}
+
+double sunConeFactor(const Sun& sun) { return 2.0 / (1.0 + std::cos(sun.angularRadiusRad)); }
+
+double referenceLuminance(const Scene& scene, const SkyTables& sky)
+{
+    return std::max({sunIlluminanceY_lux(scene) / M_PI, sky.maxLuminance_cd_m2, 1e-6});
+}
+
+UniformSources setupUniformEmission(const Scene& scene, const SkyTables& sky)
+{
+    UniformSources e;
+    emissionSphere(scene, &e.sphereCentre, &e.sphereRadius_m);
     const double disk = M_PI * e.sphereRadius_m * e.sphereRadius_m;
     const glm::dvec3 E = scene.sun.present ? scene.sun.illuminanceRgb_lux : glm::dvec3(0.0);
-    const double sunY = 0.2126 * E.r + 0.7152 * E.g + 0.0722 * E.b;
-    e.sunFlux = sunY * disk;
+    e.sunFlux = sunIlluminanceY_lux(scene) * disk;
     e.skyFlux = sky.integral_cd_m2_sr * disk;
 
     // Entry 0: the sun, by its flux; entries 1 + k: sky cells, by their flux (disk x cellSin).
@@ -129,10 +155,8 @@ EmissionSetup setupUniformEmission(const Scene& scene, const SkyTables& sky)
         w[0] = 1.0;  // no light at all: a table that draws the (zero-weight) sun
     e.sources = makeIntegerCdf(w);
     e.pSun = e.sunFlux > 0.0 ? e.sources.probability(0) : 0.0;
-    // A disk sun's directions are uniform in its cone, so a plane facing it receives
-    // E (1 + cos a) / 2 per unit weight: 2 / (1 + cos a) restores its normal illuminance E.
     if (e.pSun > 0.0)
-        e.sunWeight = E * disk * (2.0 / (1.0 + std::cos(scene.sun.angularRadiusRad))) / e.pSun;
+        e.sunWeight = E * disk * sunConeFactor(scene.sun) / e.pSun;
     e.skyWeight = disk;
     e.skyFactor.resize(sky.cells);
     for (std::uint32_t k = 0; k < sky.cells; ++k) {
@@ -141,20 +165,17 @@ EmissionSetup setupUniformEmission(const Scene& scene, const SkyTables& sky)
     }
     if (e.skyFactor.empty())
         e.skyFactor = {0.0f};
-    e.referenceLuminance_cd_m2 = std::max({sunY / M_PI, sky.maxLuminance_cd_m2, 1e-6});
     return e;
 }
 
-void fillEmissionParams(const EmissionSetup& e, const SkyTables& sky, dev::RenderParams& p)
+dev::SourceParams sourceParams(const IntegerCdf& sources, const glm::dvec3& sunWeight, double skyScale)
 {
-    p.sphere = {static_cast<float>(e.sphereCentre.x), static_cast<float>(e.sphereCentre.y),
-                static_cast<float>(e.sphereCentre.z), static_cast<float>(e.sphereRadius_m)};
-    p.sun_weight = {static_cast<float>(e.sunWeight.r), static_cast<float>(e.sunWeight.g),
-                    static_cast<float>(e.sunWeight.b), 0.0f};
-    p.sky_weight = {static_cast<float>(e.skyWeight), 0.0f, 0.0f, 0.0f};
-    p.sky_theta_nodes = sky.thetaNodes;
-    p.sky_phi_nodes = sky.phiNodes;
-    p.source_alias_shift = e.sources.aliasShift;
+    dev::SourceParams p{};
+    p.sun_weight = {static_cast<float>(sunWeight.r), static_cast<float>(sunWeight.g),
+                    static_cast<float>(sunWeight.b), 0.0f};
+    p.sky_scale = static_cast<float>(skyScale);
+    p.alias_shift = sources.aliasShift;
+    return p;
 }
 
 }  // namespace fen

@@ -1,0 +1,474 @@
+// adaptive_strategy.cpp — the `adaptive` strategy's tables, passes and buffers
+// (adaptive_strategy.h).
+#include "emission/adaptive_strategy.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+
+#include "bvh_build.h"
+#include "cl/launch.h"
+#include "emission/adaptive_grid.h"
+#include "emission/portal_planes.h"
+#include "trace/device_bvh.h"
+#include "util/error.h"
+
+namespace fen {
+
+namespace {
+
+constexpr double kTwo64 = 18446744073709551616.0;
+// Statistics hold round(Y^2 * 2^32 / ref^2), 128-bit: contributions down to ~1e-5 of the
+// reference luminance still register, and 2^95 ref^2 fits before overflowing (lib/accumulate.h).
+constexpr int kStatsFixedPointBits = 32;
+// In the base density a portal plane is weighted by |v.n| plus this, so that no plane is written off
+// for directions it faces edge-on before anything is measured: cells are wide at first.
+constexpr double kPlaneFloor = 0.05;
+
+// The direction (towards the sky) at (s, t): cos(theta) = 1 - s, phi = 2 pi t.
+glm::dvec3 skyAt(double s, double t, double* theta, double* phi)
+{
+    *theta = std::acos(std::clamp(1.0 - s, -1.0, 1.0));
+    *phi = 2.0 * M_PI * t;
+    return skyDirection(*theta, *phi);
+}
+
+class AdaptiveStrategyImpl final : public AdaptiveStrategy {
+public:
+    AdaptiveStrategyImpl(const EmissionSettings& settings, const EmissionInputs& in)
+        : ctx_(in.ctx), opt_(settings.adaptive), portalBase_(opt_.base == EmissionMethod::Portal),
+          sky_(in.deviceSky), goniogram_(in.goniogram)
+    {
+        const auto t0 = std::chrono::steady_clock::now();
+        validateAdaptiveOptions(opt_);
+        const Scene& scene = in.scene;
+        emissionSphere(scene, &centre_, &radius_m_);
+        const double ref = referenceLuminance(scene, in.sky);
+        statsScale_ = std::ldexp(1.0, kStatsFixedPointBits) / (ref * ref);
+        fixedScale_ = in.pixelFixedScale;
+        hasSky_ = goniogram_ && goniogram_->integral() > 0.0;
+        if (portalBase_)
+            planes_ = makePortalPlanes(scene, settings.portals, in.bvhWidth);
+        sunY_ = sunIlluminanceY_lux(scene);
+        sunDir_ = -scene.sun.travelDirection;
+
+        // Regions: the disk, then the portal planes (their frames' areas).
+        regionArea_.push_back(M_PI * radius_m_ * radius_m_);
+        for (const auto& f : planes_.frames)
+            regionArea_.push_back(f.origin.w);
+
+        // The base density per (direction box, region), over the initial boxes: the disk's share
+        // by flux (as `uniform`), the planes' by flux through them.
+        std::vector<GridCell> cells;
+        const std::uint32_t side = 1u << opt_.initialDepth, skySide = 1u << opt_.initialSkyDepth;
+        std::vector<GridCell> dirBoxes;
+        if (sunY_ > 0.0 && scene.sun.present) {
+            GridCell c;
+            c.sun = true;
+            dirBoxes.push_back(c);
+        }
+        if (hasSky_)
+            for (std::uint32_t it = 0; it < skySide; ++it)
+                for (std::uint32_t is = 0; is < skySide; ++is) {
+                    GridCell c;
+                    c.skyDepth = static_cast<std::uint32_t>(opt_.initialSkyDepth);
+                    c.is = is;
+                    c.it = it;
+                    dirBoxes.push_back(c);
+                }
+        const double diskShare = portalBase_ ? opt_.diskShare : 1.0;
+        std::vector<double> regionTotal(1 + planes_.frames.size(), 0.0);
+        std::vector<std::vector<double>> flux(dirBoxes.size());
+        for (std::size_t d = 0; d < dirBoxes.size(); ++d)
+            for (std::uint32_t r = 0; r < regionTotal.size(); ++r) {
+                GridCell c = dirBoxes[d];
+                c.region = r;
+                flux[d].push_back(boxFlux(c, 64));
+                regionTotal[r == 0 ? 0 : 1] += flux[d].back();
+            }
+        for (std::size_t d = 0; d < dirBoxes.size(); ++d)
+            for (std::uint32_t r = 0; r < regionTotal.size(); ++r) {
+                const double share = r == 0 ? diskShare : 1.0 - diskShare;
+                const double total = regionTotal[r == 0 ? 0 : 1];
+                if (!(flux[d][r] > 0.0) || !(total > 0.0))
+                    continue;
+                for (std::uint32_t iy = 0; iy < side; ++iy)
+                    for (std::uint32_t ix = 0; ix < side; ++ix) {
+                        GridCell c = dirBoxes[d];
+                        c.region = r;
+                        c.depth = static_cast<std::uint32_t>(opt_.initialDepth);
+                        c.ix = ix;
+                        c.iy = iy;
+                        c.base = share * flux[d][r] / total / (side * side);
+                        cells.push_back(c);
+                    }
+            }
+        if (cells.empty()) {
+            // No light at all: one (zero-weight) sun cell keeps the tables valid; paths carry 0.
+            GridCell c;
+            c.sun = true;
+            c.base = 1.0;
+            cells.push_back(c);
+        }
+        if (cells.size() > opt_.maxCells)
+            throw Error(cat("--adaptive-max-cells ", opt_.maxCells, " is below the ", cells.size(),
+                            " cells the grid starts with"));
+        GridLearning learning;
+        learning.estimate = opt_.estimate;
+        learning.defensive = opt_.defensive;
+        learning.splitGain = opt_.splitGain;
+        learning.maxDepth = static_cast<std::uint32_t>(opt_.maxDepth);
+        learning.maxSkyDepth = static_cast<std::uint32_t>(opt_.maxSkyDepth);
+        learning.maxCells = opt_.maxCells;
+        grid_ = std::make_unique<AdaptiveGrid>(std::move(cells), learning, [this](const GridCell& c, double share[4]) {
+            double total = 0.0;
+            for (std::uint32_t q = 0; q < 4; ++q) {
+                GridCell k = c;
+                k.skyDepth = c.skyDepth + 1;
+                k.is = 2 * c.is + (q & 1u);
+                k.it = 2 * c.it + (q >> 1);
+                share[q] = boxFlux(k, 16);
+                total += share[q];
+            }
+            for (std::uint32_t q = 0; q < 4; ++q)
+                share[q] = total > 0.0 ? share[q] / total : 0.25;
+        });
+
+        createBuffers(scene);
+        upload();
+        passSize_ = opt_.firstPass;
+        learnSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+
+    EmissionMethod method() const override { return EmissionMethod::Adaptive; }
+    std::string emitProgram() const override { return "emit_adaptive.cl"; }
+    void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
+    {
+        ocl::setKernelArgsFrom(emit, first, params_, cellAlias_, cellBuf_, sky_.theta, sky_.phi, sky_.values,
+                               stats_, frames_, portalBvh_->nodes(), portalBvh_->packets());
+    }
+    bool learns() const override { return true; }
+    double batchWeight() override
+    {
+        batchWeights_.push_back(lastBatchWeight_);
+        return lastBatchWeight_;
+    }
+    const cl::Buffer& cellStats() const override { return stats_; }
+    double statsScale() const override { return statsScale_; }
+    std::uint64_t passLimit() const override { return passSize_ - passPaths_; }
+
+    void afterPaths(std::uint64_t paths, bool batchEnd) override
+    {
+        if (paths == 0)
+            return;
+        passPaths_ += paths;
+        if (passPaths_ < passSize_ && !batchEnd)
+            return;
+        const auto t0 = std::chrono::steady_clock::now();
+        learn();
+        if (batchEnd) {
+            double paths = 0.0, varianceTimesPaths = 0.0;
+            for (const auto& [n, v] : batchPasses_) {
+                paths += n;
+                varianceTimesPaths += n * v;
+            }
+            // The batch's image is the path-weighted mean of its passes': variance per path
+            // sum n_p V_p / N, so its precision is N^2 / sum n_p V_p.
+            lastBatchWeight_ = varianceTimesPaths > 0.0 ? paths * paths / varianceTimesPaths : 1.0;
+            batchPasses_.clear();
+        }
+        ++passes_;
+        passPaths_ = 0;
+        passSize_ = std::min<std::uint64_t>(passSize_ * 2, std::uint64_t{1} << 62);
+        learnSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+
+    const AdaptiveGrid& grid() const override { return *grid_; }
+    const std::vector<double>& realisedProbabilities() const override { return realised_; }
+    void setProbabilities(const std::vector<double>& p) override
+    {
+        grid_->setProbabilities(p);
+        upload();
+    }
+
+    nlohmann::json report() const override
+    {
+        const auto& cells = grid_->cells();
+        // Developers' view of the learned grid (README: Diagnostics).
+        if (const char* dump = std::getenv("FEN_ADAPTIVE_DUMP"); dump && *dump) {
+            FILE* f = std::fopen(dump, "w");
+            if (!f)
+                throw Error(cat("FEN_ADAPTIVE_DUMP=", dump, ": cannot write"));
+            std::fprintf(f, "sun,region,depth,ix,iy,skydepth,is,it,base,prob,learned,paths,sum,sumsq,connections\n");
+            for (std::size_t i = 0; i < cells.size(); ++i) {
+                const GridCell& c = cells[i];
+                const GridCell::Stats t = c.total();
+                std::fprintf(f, "%d,%u,%u,%u,%u,%u,%u,%u,%g,%g,%g,%g,%g,%g,%g\n", c.sun ? 1 : 0, c.region, c.depth,
+                             c.ix, c.iy, c.skyDepth, c.is, c.it, c.base, c.prob, grid_->learned()[i], t.paths, t.sum,
+                             t.sumSq, t.connections);
+            }
+            std::fclose(f);
+        }
+        double sun = 0.0, disk = 0.0;
+        for (const GridCell& c : cells) {
+            sun += c.sun ? c.prob : 0.0;
+            disk += c.region == FEN_REGION_DISK ? c.prob : 0.0;
+        }
+        nlohmann::json j = {
+            {"base", methodName(opt_.base)},
+            {"initial_sky_depth", opt_.initialSkyDepth},
+            {"max_sky_depth", opt_.maxSkyDepth},
+            {"deepest_sky", grid_->deepestSky()},
+            {"cells", cells.size()},
+            {"max_cells", opt_.maxCells},
+            {"initial_depth", opt_.initialDepth},
+            {"max_depth", opt_.maxDepth},
+            {"deepest", grid_->deepest()},
+            {"memory_bytes", deviceBytes_},
+            {"passes", passes_},
+            {"checksum", grid_->checksum()},
+            {"batch_weights", relativeWeights()},
+            {"first_pass_paths", opt_.firstPass},
+            {"defensive", opt_.defensive},
+            {"estimate", opt_.estimate == GridEstimate::Pooled ? "pooled" : "squares"},
+            {"split_gain", opt_.splitGain},
+            {"learn_seconds", learnSeconds_},
+            {"paths_learned_from", grid_->paths()},
+            {"connections_per_path", grid_->paths() > 0.0 ? grid_->connections() / grid_->paths() : 0.0},
+            {"probability", {{"sun", sun}, {"disk", disk}, {"portals", 1.0 - disk}}},
+            {"sun_illuminance_lux", sunY_},
+            {"sky_integral_cd_m2_sr", goniogram_ ? goniogram_->integral() : 0.0},
+            {"disk_radius_m", radius_m_}};
+        if (portalBase_) {
+            j["disk_share"] = opt_.diskShare;
+            j["portal_nodes"] = planes_.set.nodes;
+            j["portal_planes"] = planes_.frames.size();
+        }
+        return j;
+    }
+
+private:
+    // The base density's weight of the rays of a cell's direction box through its region
+    // (midpoint rule, n x n points: it only shapes the base and the priors; the paths' weights use
+    // the exact density): the flux for the disk, per unit area of it; for a portal plane the flux
+    // through it, with kPlaneFloor.
+    double boxFlux(const GridCell& c, int n) const
+    {
+        const auto regionWeight = [&](const glm::dvec3& towardsSky) {
+            if (c.region == FEN_REGION_DISK)
+                return 1.0;
+            const glm::dvec3& nrm = planes_.normal[c.region - 1];
+            return planes_.area_m2[c.region - 1] * (std::fabs(glm::dot(towardsSky, nrm)) + kPlaneFloor);
+        };
+        if (c.sun)
+            return sunY_ * regionWeight(sunDir_);
+        if (!hasSky_)
+            return 0.0;
+        const double size = std::ldexp(1.0, -static_cast<int>(c.skyDepth));
+        double sum = 0.0;
+        for (int a = 0; a < n; ++a)
+            for (int b = 0; b < n; ++b) {
+                double theta, phi;
+                const glm::dvec3 w = skyAt((c.is + (a + 0.5) / n) * size, (c.it + (b + 0.5) / n) * size, &theta, &phi);
+                sum += goniogram_->eval(theta, phi) * regionWeight(w);
+            }
+        return sum / (n * n) * 2.0 * M_PI * size * size;
+    }
+
+    // The counted batches' weights over their mean.
+    std::vector<double> relativeWeights() const
+    {
+        double mean = 0.0;
+        for (double w : batchWeights_)
+            mean += w / static_cast<double>(batchWeights_.size());
+        std::vector<double> r;
+        for (double w : batchWeights_)
+            r.push_back(mean > 0.0 ? w / mean : 1.0);
+        return r;
+    }
+
+    void createBuffers(const Scene& scene)
+    {
+        ocl::Context& c = ctx_;
+        const std::size_t maxCells = opt_.maxCells;
+        std::size_t columns = 2;
+        while (columns < maxCells)
+            columns *= 2;
+        const auto add = [this](std::size_t bytes) { deviceBytes_ += std::max<std::size_t>(bytes, 4); };
+        cellBuf_ = c.buffer(CL_MEM_READ_ONLY, maxCells * sizeof(dev::AdaptiveCell), "adaptive cells");
+        add(maxCells * sizeof(dev::AdaptiveCell));
+        cellAlias_ = c.buffer(CL_MEM_READ_ONLY, columns * 8, "adaptive cell table");
+        add(columns * 8);
+        stats_ = c.buffer(CL_MEM_READ_WRITE, maxCells * FEN_CELL_PARTS * FEN_CELL_STATS_WORDS * 8, "adaptive cell statistics");
+        add(maxCells * FEN_CELL_PARTS * FEN_CELL_STATS_WORDS * 8);
+        c.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, maxCells * FEN_CELL_PARTS * FEN_CELL_STATS_WORDS * 8);
+        const auto upload = [&](const auto& v, const char* what) {
+            add(v.size() * sizeof(v[0]));
+            return c.buffer(CL_MEM_READ_ONLY, v.size() * sizeof(v[0]), what, v.empty() ? nullptr : v.data());
+        };
+        frames_ = upload(planes_.frames, "portal frames");
+        if (!portalBase_) {
+            // Placeholders: a one-triangle tree far away, never traversed over a uniform base.
+            const float far = 1e30f;
+            const std::vector<Triangle> none = {{{far, far, far}, {far, far, far + 1}, {far, far + 1, far}}};
+            planes_.bvh = flattenBvh(buildBinnedSah(none), none, 2);
+        }
+        portalBvh_ = std::make_unique<DeviceBvh>(c, planes_.bvh);
+        add(planes_.bvh.nodeBytes() + planes_.bvh.packetBytes());
+        dev::AdaptiveParams p{};
+        const glm::dvec3 E = scene.sun.present ? scene.sun.illuminanceRgb_lux : glm::dvec3(0.0);
+        const glm::dvec3 sw = E * sunConeFactor(scene.sun);
+        p.sun_weight = {float(sw.r), float(sw.g), float(sw.b), 0.0f};
+        p.portal_base = portalBase_ ? 1u : 0u;
+        params_ = c.buffer(CL_MEM_READ_ONLY, sizeof p, "adaptive parameters", &p);
+        deviceParams_ = p;
+    }
+
+    // The grid's probabilities as the device draws them (integer alias table: the weights use the
+    // probabilities realised), with each cell's weight.
+    void upload()
+    {
+        const auto& cells = grid_->cells();
+        std::vector<double> prob(cells.size());
+        for (std::size_t i = 0; i < cells.size(); ++i)
+            prob[i] = cells[i].prob;
+        const IntegerCdf table = makeIntegerCdf(prob);
+        realised_.resize(cells.size());
+        hostCells_.resize(cells.size());
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            const GridCell& c = cells[i];
+            realised_[i] = table.probability(i);
+            const double size = std::ldexp(1.0, -static_cast<int>(c.depth));
+            const double skySize = std::ldexp(1.0, -static_cast<int>(c.skyDepth));
+            dev::AdaptiveCell d{};
+            d.box = {float(c.ix * size), float(c.iy * size), float(size), float(size)};
+            d.dirs = c.sun ? dev::fen_float4{0.0f, 0.0f, 0.0f, 0.0f}
+                           : dev::fen_float4{float(c.is * skySize), float(c.it * skySize), float(skySize), float(skySize)};
+            d.region = c.region;
+            const double solidAngle = c.sun ? 1.0 : 2.0 * M_PI * c.skyArea();
+            d.weight = static_cast<float>(regionArea_[c.region] * c.boxArea() * solidAngle / realised_[i]);
+            hostCells_[i] = d;
+        }
+        hostAlias_ = table.alias;
+        // The next pass's variance relative to the base density's, both as the statistics so far
+        // predict: fixed before the pass runs, so weighting the batches by it keeps them unbiased.
+        std::vector<double> base(cells.size());
+        for (std::size_t i = 0; i < cells.size(); ++i)
+            base[i] = cells[i].base;
+        const double baseVariance = grid_->predictedVariance(base);
+        nextVariance_ = baseVariance > 0.0 ? grid_->predictedVariance(realised_) / baseVariance : 1.0;
+        deviceParams_.cell_alias_shift = table.aliasShift;
+        deviceParams_.cells = static_cast<std::uint32_t>(cells.size());
+        auto& q = ctx_.queue();
+        q.enqueueWriteBuffer(cellBuf_, CL_FALSE, 0, hostCells_.size() * sizeof(dev::AdaptiveCell), hostCells_.data());
+        q.enqueueWriteBuffer(cellAlias_, CL_FALSE, 0, hostAlias_.size() * 4, hostAlias_.data());
+        q.enqueueWriteBuffer(params_, CL_TRUE, 0, sizeof deviceParams_, &deviceParams_);
+    }
+
+    // Reads the pass's statistics into the grid, learns, uploads the new grid, clears the counts.
+    // Records the pass's variance relative to the base density's, as predicted before it ran.
+    void learn()
+    {
+        const std::size_t n = FEN_CELL_PARTS * grid_->cells().size();
+        std::vector<std::uint64_t> raw(n * FEN_CELL_STATS_WORDS);
+        auto& q = ctx_.queue();
+        q.enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
+        std::vector<GridCell::Stats> parts(n);
+        const auto& cells = grid_->cells();
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint64_t* w = raw.data() + FEN_CELL_STATS_WORDS * i;
+            const auto word128 = [w](int lo) {
+                return static_cast<double>(w[lo + 1]) * kTwo64 + static_cast<double>(w[lo]);
+            };
+            // Lambda = Y P(cell) / P_base(cell): the contribution had the base density emitted it.
+            const std::size_t cell = i / FEN_CELL_PARTS;
+            const double toBase = realised_[cell] / cells[cell].base;
+            parts[i].sum = word128(FEN_CELL_SUM_LO) / fixedScale_ * toBase;
+            parts[i].sumSq = word128(FEN_CELL_SUMSQ_LO) / statsScale_ * toBase * toBase;
+            parts[i].paths = static_cast<double>(w[FEN_CELL_PATHS]);
+            parts[i].connections = static_cast<double>(w[FEN_CELL_CONNECTIONS]);
+        }
+        grid_->addPass(parts);
+        const double variance = nextVariance_;
+        batchPasses_.push_back({static_cast<double>(passPaths_), variance});
+        double passConn = 0.0;
+        for (const auto& p : parts)
+            passConn += p.connections;
+        const std::size_t splits = grid_->update();
+        if (std::getenv("FEN_ADAPTIVE_LOG"))
+            std::fprintf(stderr, "pass %d: %llu paths, %.4f contributions/path, variance %.3g, %zu splits -> %zu cells\n",
+                         passes_, static_cast<unsigned long long>(passPaths_), passConn / passPaths_, variance, splits,
+                         grid_->cells().size());
+        q.enqueueFillBuffer(stats_, cl_ulong(0), 0, FEN_CELL_PARTS * grid_->cells().size() * FEN_CELL_STATS_WORDS * 8);
+        upload();
+    }
+
+    ocl::Context& ctx_;
+    AdaptiveOptions opt_;
+    bool portalBase_;
+    glm::dvec3 centre_{0.0};
+    double radius_m_ = 0.0, statsScale_ = 0.0, fixedScale_ = 0.0;
+    const DeviceSky& sky_;
+    const std::optional<Goniogram>& goniogram_;
+    bool hasSky_ = false;
+    double sunY_ = 0.0;
+    glm::dvec3 sunDir_{0.0};  // towards the sun
+    PortalPlanes planes_;
+    std::vector<double> regionArea_, realised_;
+    std::unique_ptr<AdaptiveGrid> grid_;
+    std::vector<dev::AdaptiveCell> hostCells_;
+    std::vector<std::uint32_t> hostAlias_;
+    dev::AdaptiveParams deviceParams_{};
+    cl::Buffer params_, cellAlias_, cellBuf_, stats_, frames_;
+    std::unique_ptr<DeviceBvh> portalBvh_;
+    std::size_t deviceBytes_ = 0;
+    std::uint64_t passSize_ = 0, passPaths_ = 0;
+    int passes_ = 0;
+    double learnSeconds_ = 0.0;
+    double nextVariance_ = 1.0;       // variance per path of the pass about to run over the base's, predicted
+    std::vector<std::pair<double, double>> batchPasses_;  // this batch's passes: paths, variance
+    double lastBatchWeight_ = 1.0;
+    std::vector<double> batchWeights_;
+};
+
+}  // namespace
+
+void validateAdaptiveOptions(const AdaptiveOptions& o)
+{
+    if (o.base != EmissionMethod::Uniform && o.base != EmissionMethod::Portal)
+        throw Error("--base: expected uniform or portal");
+    if (o.maxSkyDepth < 0 || o.maxSkyDepth > 12)
+        throw Error(cat("--adaptive-max-sky-depth ", o.maxSkyDepth, " must be in 0..12"));
+    if (o.initialSkyDepth < 0 || o.initialSkyDepth > 5 || o.initialSkyDepth > o.maxSkyDepth)
+        throw Error(cat("--adaptive-initial-sky-depth ", o.initialSkyDepth, " must be in 0..5 and at most "
+                        "--adaptive-max-sky-depth (", o.maxSkyDepth, ")"));
+    if (o.maxDepth < 0 || o.maxDepth > 16)
+        throw Error(cat("--adaptive-max-depth ", o.maxDepth, " must be in 0..16"));
+    if (o.initialDepth < 0 || o.initialDepth > 6 || o.initialDepth > o.maxDepth)
+        throw Error(cat("--adaptive-initial-depth ", o.initialDepth, " must be in 0..6 and at most "
+                        "--adaptive-max-depth (", o.maxDepth, ")"));
+    if (!(o.defensive > 0.0 && o.defensive <= 1.0))
+        throw Error(cat("--adaptive-defensive ", o.defensive, " must be in (0, 1]: a share of 0 "
+                        "would let cells that have not shown light yet die (bias)"));
+    if (!(o.diskShare > 0.0 && o.diskShare < 1.0))
+        throw Error(cat("--adaptive-disk-share ", o.diskShare, " must be in (0, 1): with 0, light "
+                        "that does not start through a marked portal would be lost"));
+    if (!(o.splitGain > 0.0 && o.splitGain <= 1.0))
+        throw Error(cat("--adaptive-split ", o.splitGain, " must be in (0, 1]"));
+    if (o.firstPass < 1024 || o.firstPass > (std::uint64_t{1} << 40))
+        throw Error(cat("--adaptive-first-pass ", o.firstPass, " must be in 1024..2^40 paths"));
+    if (o.maxCells < 1 || o.maxCells > (1u << 22))
+        throw Error(cat("--adaptive-max-cells ", o.maxCells, " must be in 1..4194304"));
+}
+
+std::unique_ptr<AdaptiveStrategy> makeAdaptiveStrategy(const EmissionSettings& settings,
+                                                       const EmissionInputs& in)
+{
+    return std::make_unique<AdaptiveStrategyImpl>(settings, in);
+}
+
+}  // namespace fen

@@ -1,0 +1,52 @@
+// uniform_strategy.cpp — the `uniform` strategy's buffers and report (uniform_strategy.h).
+#include "emission/uniform_strategy.h"
+
+#include "cl/launch.h"
+
+namespace fen {
+
+namespace {
+
+class UniformStrategy final : public EmissionStrategy {
+public:
+    explicit UniformStrategy(const EmissionInputs& in)
+        : sky_(in.deviceSky), sources_(setupUniformEmission(in.scene, in.sky))
+    {
+        const dev::SourceParams p = sourceParams(sources_.sources, sources_.sunWeight, sources_.skyWeight);
+        params_ = in.ctx.buffer(CL_MEM_READ_ONLY, sizeof p, "uniform emission parameters", &p);
+        alias_ = in.ctx.buffer(CL_MEM_READ_ONLY, sources_.sources.alias.size() * 4, "source table",
+                               sources_.sources.alias.data());
+        factor_ = in.ctx.buffer(CL_MEM_READ_ONLY, sources_.skyFactor.size() * 4, "sky weights",
+                                sources_.skyFactor.data());
+        noStats_ = in.ctx.buffer(CL_MEM_READ_WRITE, 0, "cell statistics (none)");
+    }
+
+    EmissionMethod method() const override { return EmissionMethod::Uniform; }
+    std::string emitProgram() const override { return "emit_uniform.cl"; }
+    void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
+    {
+        ocl::setKernelArgsFrom(emit, first, params_, alias_, sky_.theta, sky_.phi, sky_.values, factor_);
+    }
+    const cl::Buffer& cellStats() const override { return noStats_; }
+    nlohmann::json report() const override
+    {
+        return {{"sun_flux_lm", sources_.sunFlux},
+                {"sky_flux_lm", sources_.skyFlux},
+                {"p_sun", sources_.pSun},
+                {"disk_radius_m", sources_.sphereRadius_m}};
+    }
+
+private:
+    const DeviceSky& sky_;
+    UniformSources sources_;
+    cl::Buffer params_, alias_, factor_, noStats_;
+};
+
+}  // namespace
+
+std::unique_ptr<EmissionStrategy> makeUniformStrategy(const EmissionInputs& in)
+{
+    return std::make_unique<UniformStrategy>(in);
+}
+
+}  // namespace fen

@@ -1,0 +1,100 @@
+// film.cpp — pixel accumulators and batch statistics (film.h).
+#include "render/film.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fen {
+
+namespace {
+
+constexpr double kTwo64 = 18446744073709551616.0;
+
+}  // namespace
+
+Film::Film(ocl::Context& ctx, int width, int height, double referenceLuminance_cd_m2)
+    : ctx_(ctx), width_(width), height_(height),
+      fixedScale_(static_cast<float>(std::ldexp(1.0, kPixelFixedPointBits) / referenceLuminance_cd_m2)),
+      accum_(ctx.buffer(CL_MEM_READ_WRITE, pixels() * kWordsPerPixel * 8, "pixel accumulators")),
+      camera_(ctx.buffer(CL_MEM_READ_WRITE, pixels() * 16, "camera-pass image"))
+{
+}
+
+void Film::clear()
+{
+    ctx_.queue().enqueueFillBuffer(accum_, cl_ulong(0), 0, pixels() * kWordsPerPixel * 8);
+}
+
+std::vector<double> Film::read(std::uint64_t paths)
+{
+    const std::size_t px = pixels();
+    std::vector<std::uint64_t> acc(px * kWordsPerPixel);
+    std::vector<float> cam(px * 4);
+    auto& q = ctx_.queue();
+    q.enqueueReadBuffer(accum_, CL_FALSE, 0, acc.size() * 8, acc.data());
+    q.enqueueReadBuffer(camera_, CL_TRUE, 0, cam.size() * 4, cam.data());
+    std::vector<double> img(px * 3);
+    const double toValue = 1.0 / (static_cast<double>(fixedScale_) * static_cast<double>(paths));
+    for (std::size_t p = 0; p < px; ++p)
+        for (int c = 0; c < 3; ++c)
+            img[3 * p + c] = (static_cast<double>(acc[kWordsPerPixel * p + 2 * c + 1]) * kTwo64 +
+                              static_cast<double>(acc[kWordsPerPixel * p + 2 * c])) *
+                                 toValue +
+                             cam[4 * p + c];
+    return img;
+}
+
+BatchStatistics::BatchStatistics(int width, int height, std::vector<Roi> rois)
+    : width_(width), height_(height), rois_(std::move(rois)),
+      sum_(static_cast<std::size_t>(width) * height * 3, 0.0),
+      sumY2_(static_cast<std::size_t>(width) * height, 0.0), roiMeans_(rois_.size())
+{
+}
+
+void BatchStatistics::add(const std::vector<double>& img, double w)
+{
+    const std::size_t px = sumY2_.size();
+    for (std::size_t p = 0; p < px; ++p) {
+        for (int c = 0; c < 3; ++c)
+            sum_[3 * p + c] += w * img[3 * p + c];
+        const double y = luminance(img[3 * p], img[3 * p + 1], img[3 * p + 2]);
+        sumY2_[p] += w * y * y;
+    }
+    for (std::size_t k = 0; k < rois_.size(); ++k) {
+        const Roi& roi = rois_[k];
+        double m = 0.0;
+        for (int y = roi.y0; y < roi.y1; ++y)
+            for (int x = roi.x0; x < roi.x1; ++x) {
+                const std::size_t p = static_cast<std::size_t>(y) * width_ + x;
+                m += luminance(img[3 * p], img[3 * p + 1], img[3 * p + 2]);
+            }
+        roiMeans_[k].push_back(m / static_cast<double>(roi.pixels()));
+    }
+    weights_.push_back(w);
+    weight_ += w;
+    ++batches_;
+}
+
+Image BatchStatistics::mean() const
+{
+    Image image(width_, height_);
+    const double W = weight_;
+    for (std::size_t i = 0; i < sum_.size(); ++i)
+        image.rgb[i] = static_cast<float>(sum_[i] / W);
+    return image;
+}
+
+std::vector<double> BatchStatistics::stdErrLuminance() const
+{
+    const std::size_t px = sumY2_.size();
+    std::vector<double> se(px, 0.0);
+    const double W = weight_, B = batches_;
+    for (std::size_t p = 0; p < px; ++p) {
+        const double meanY = luminance(sum_[3 * p], sum_[3 * p + 1], sum_[3 * p + 2]) / W;
+        const double var = std::max(0.0, (sumY2_[p] - W * meanY * meanY) / (B - 1.0));
+        se[p] = std::sqrt(var / W);
+    }
+    return se;
+}
+
+}  // namespace fen

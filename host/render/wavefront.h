@@ -1,0 +1,61 @@
+// wavefront.h — the light-tracing stages on the device (DESIGN.md §2, §4): a pool of path slots
+// and per iteration emit -> intersect -> shade -> connect (kernels/*.cl), until a range of path
+// indices is all emitted and dead; and the camera pass for the sky seen directly.
+//
+// The emission stage is built with the strategy's definitions (emission/strategy.h); connect is
+// built to gather cell statistics when the strategy learns. Counters (shared/fen_render.h) are
+// zeroed per batch and read back once per iteration; each launch is named and timed
+// (Context::stats()).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "cl/context.h"
+#include "emission/strategy.h"
+#include "render/device_scene.h"
+#include "render/film.h"
+#include "shared/fen_render.h"
+
+namespace fen {
+
+// What a batch's counters say (summed over the iterations of the batch).
+struct BatchCounts {
+    std::uint64_t extensionRays = 0, shadowRays = 0, cameraRays = 0;
+    std::uint64_t badContributions = 0, overflows = 0, statsOverflows = 0;
+    std::uint64_t maxBounceCuts = 0, cameraGlassCuts = 0;
+};
+
+class Wavefront {
+public:
+    Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy, Film& film,
+              const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool);
+
+    std::uint32_t pool() const { return pool_; }
+    double kernelBuildSeconds() const { return buildSeconds_; }
+
+    // Uploads the parameters for what follows (path_end is set per run).
+    void setParams(const dev::RenderParams& params) { params_ = params; }
+    // Zeroes the counters: a batch starts.
+    void beginBatch();
+    // Runs paths [base, base + count) to the end. `progress(pathsDone, raysDone)` is called after
+    // every iteration with the increments.
+    void run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+             const std::function<void(std::uint64_t, std::uint64_t)>& progress);
+    // The camera pass of batch `batch`, then the batch's counters into `counts`.
+    void endBatch(std::uint32_t batch, BatchCounts& counts);
+
+private:
+    void warmUp();
+    ocl::Context& ctx_;
+    EmissionStrategy& strategy_;
+    Film& film_;
+    dev::RenderParams params_{};
+    std::uint32_t pool_;
+    std::uint64_t extensionRays_ = 0;  // of the batch so far
+    cl::Buffer paramsBuf_, counters_, paths_, hits_, connections_, cameraBuf_;
+    cl::Kernel emit_, intersect_, shade_, connect_, cameraPass_;
+    double buildSeconds_ = 0.0;
+};
+
+}  // namespace fen
