@@ -18,6 +18,7 @@
 // light -- is a fen::Error naming the file and the node / mesh / material / key at fault.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "scene/scene.h"
@@ -25,6 +26,12 @@
 namespace fen {
 
 Scene loadGltf(const std::string& path);
+
+// The same from a file's bytes in memory (also the fuzz target's entry): `path` only names the
+// file in messages, and external files are read from `folder` only. The bytes are binary glTF when
+// `path` ends in .glb or they start with the GLB magic, else JSON.
+Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std::string& path,
+                         const std::string& folder);
 
 // The camera named `name` (node name first, then the camera's own name); the first camera when
 // `name` is empty. Throws fen::Error listing the cameras there are.
