@@ -11,6 +11,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
+#include "scene/gltf_check.h"
 #include "scene/json_reader.h"
 #include "scene/scene_files.h"
 #include "util/error.h"
@@ -73,8 +74,7 @@ public:
         stride_ = static_cast<std::size_t>(stride);
         if (bv.byteOffset + bv.byteLength > buf.data.size())
             throw Error(cat(where_, ": bufferView ", acc_->bufferView, " lies outside buffer ",
-                            bv.buffer, " (", buf.data.size(), " bytes",
-                            buf.data.empty() ? "; was its file found?" : "", ")"));
+                            bv.buffer, buf.data.empty() ? " (was its file found?)" : ""));
         if (acc_->count > 0 &&
             acc_->byteOffset + stride_ * (acc_->count - 1) + elemSize_ > bv.byteLength)
             throw Error(cat(where_, ": ", acc_->count, " elements do not fit in bufferView ",
@@ -162,7 +162,8 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
         for (std::size_t i = 0; i < ia.count(); ++i) {
             idx[i] = ia.index(i);
             if (idx[i] >= world.size())
-                throw Error(cat(ia.where(), ": index ", idx[i], " at ", i, " exceeds the ",
+                // By position: the value is the buffer's content, which no message quotes.
+                throw Error(cat(ia.where(), ": index at position ", i, " exceeds the ",
                                 world.size(), " vertices"));
         }
     } else {
@@ -353,8 +354,17 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
     // tinygltf trusts a GLB's chunk lengths (2.7 reads past the end when BIN's is 8 too long):
     // it sees the bytes only once their framing is checked, and only the header's length of them.
     std::size_t glbLength = 0;
-    if (binary)
-        glbLength = checkGlb(data, size, path).length;
+    const char* json = reinterpret_cast<const char*>(data);
+    std::size_t jsonSize = size;
+    if (binary) {
+        const GlbLayout glb = checkGlb(data, size, path);
+        glbLength = glb.length;
+        json += glb.jsonOffset;
+        jsonSize = glb.jsonSize;
+    }
+    const nlohmann::json doc = parseGltfJson(json, jsonSize, path);
+    SceneFolder sceneFolder(folder);
+    checkGltfJson(doc, path, sceneFolder);
 
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
@@ -363,12 +373,16 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
         [](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
            int, void*) { return true; },
         nullptr);
+    // Every external file tinygltf reads goes through the folder's rule (scene_files.h).
+    sceneFolder.install(loader);
     std::string err, warn;
     const bool ok =
         binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data,
-                                             static_cast<unsigned int>(glbLength), folder)
+                                             static_cast<unsigned int>(glbLength), sceneFolder.path())
                : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data),
-                                            static_cast<unsigned int>(size), folder);
+                                            static_cast<unsigned int>(size), sceneFolder.path());
+    if (!ok && !sceneFolder.refusal().empty())
+        throw Error(cat(path, ": ", sceneFolder.refusal()));
     if (!ok) {
         std::string msg = err.empty() ? warn : err;
         while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' '))

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
@@ -244,6 +245,22 @@ TEST(CliRender, BadInputIsOneLineNamingTheProblem)
     expectError(run("render " + good + out + " --portals plate"), 1, "--method portal");
     expectError(run("render " + good + out + " --method portal --portal-overlap maybe"), 1, "--portal-overlap");
     expectError(run("render " + good + " --out /proc/no/such/o.exr --paths 10 --no-progress"), 1, "/proc/no/such");
+}
+
+// Scenes from other people (README, "Untrusted scenes"): one line naming the file and the glTF
+// path, exit status 1, never a crash, never a byte or the size of another file.
+std::string untrustedOut(const std::string& dir) { return " --out " + dir + "/o.exr --paths 1000 --no-progress"; }
+
+TEST(CliUntrusted, BufferUriOutsideTheSceneFolder)
+{
+    const std::string dir = test::tempDir("cli-untrusted-uri");
+    std::ofstream(dir + "/secret.txt") << std::string(1221, 's');
+    std::filesystem::create_directories(dir + "/scene");
+    test::GltfWriter w = plateScene();
+    w.writeExternal(dir + "/scene/s.gltf", "plate.bin", "..%2Fsecret.txt");
+    const CliRun r = run("render " + dir + "/scene/s.gltf" + untrustedOut(dir));
+    expectError(r, 1, "s.gltf: buffers[0].uri: '..%2Fsecret.txt' leads outside the scene's folder");
+    EXPECT_EQ(r.err.find("1221"), std::string::npos) << r.err;
 }
 
 }  // namespace

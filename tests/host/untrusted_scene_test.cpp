@@ -33,6 +33,157 @@ std::string errorOf(const std::string& path)
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
+// The message without the test's folder (whose name holds a process id, digits that could match).
+std::string withoutDir(std::string e, const std::string& dir)
+{
+    for (std::size_t at; (at = e.find(dir)) != std::string::npos;)
+        e.erase(at, dir.size());
+    return e;
+}
+
+// A file of `size` bytes outside the scene's folder, standing for someone's private data.
+std::string secretFile(const std::string& dir, std::size_t size)
+{
+    const std::string path = dir + "/secret.bin";
+    std::ofstream f(path, std::ios::binary);
+    for (std::size_t i = 0; i < size; ++i)
+        f.put(static_cast<char>('a' + i % 26));
+    return path;
+}
+
+// dir/scene/s.gltf, one triangle in an external buffer whose uri is then replaced by `uri`.
+std::string sceneWithBufferUri(const std::string& dir, const std::string& uri)
+{
+    fs::create_directories(dir + "/scene");
+    test::GltfWriter w;
+    w.addMeshNode("tri", kTri);
+    const std::string path = w.writeExternal(dir + "/scene/s.gltf", "tri.bin");
+    nlohmann::json j;
+    std::ifstream(path) >> j;
+    j["buffers"][0]["uri"] = uri;
+    std::ofstream(path) << j.dump();
+    return path;
+}
+
+// --- 1. URIs stay inside the scene's folder ---------------------------------------------------
+
+TEST(UntrustedScene, BufferUriLeavingTheFolderIsRefused)
+{
+    const std::string dir = test::tempDir("untrusted-dotdot");
+    secretFile(dir, 1221);
+    for (const std::string uri : {"../secret.bin", "..%2Fsecret.bin", "%2e%2e/secret.bin",
+                                  "sub/../../secret.bin", "./../secret.bin"}) {
+        const std::string e = errorOf(sceneWithBufferUri(dir, uri));
+        EXPECT_TRUE(contains(e, "s.gltf: buffers[0].uri")) << uri << ": " << e;
+        EXPECT_TRUE(contains(e, "outside the scene's folder")) << uri << ": " << e;
+        EXPECT_FALSE(contains(withoutDir(e, dir), "1221")) << "reveals the file's size: " << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    }
+}
+
+TEST(UntrustedScene, AbsoluteAndFileUrisAreRefused)
+{
+    const std::string dir = test::tempDir("untrusted-abs");
+    const std::string secret = secretFile(dir, 36);  // exactly the triangle's byteLength
+    for (const std::string& uri : std::vector<std::string>{secret, "file://" + secret, "file:" + secret, "FILE://" + secret,
+                                  "http://example.com/tri.bin"}) {
+        const std::string e = errorOf(sceneWithBufferUri(dir, uri));
+        EXPECT_TRUE(contains(e, "s.gltf: buffers[0].uri")) << uri << ": " << e;
+        EXPECT_TRUE(contains(e, "refused")) << uri << ": " << e;
+    }
+}
+
+TEST(UntrustedScene, SymlinkOutOfTheFolderIsRefused)
+{
+    const std::string dir = test::tempDir("untrusted-symlink");
+    const std::string secret = secretFile(dir, 36);
+    const std::string path = sceneWithBufferUri(dir, "link.bin");
+    fs::create_symlink(secret, dir + "/scene/link.bin");
+    const std::string e = errorOf(path);
+    EXPECT_TRUE(contains(e, "s.gltf: buffers[0].uri")) << e;
+    EXPECT_TRUE(contains(e, "outside the scene's folder")) << e;
+    // A link that stays inside is fine.
+    const std::string inside = sceneWithBufferUri(dir, "inner.bin");
+    fs::create_symlink("tri.bin", dir + "/scene/inner.bin");
+    EXPECT_EQ(loadGltf(inside).triangles.size(), 1u);
+}
+
+TEST(UntrustedScene, UrisInsideTheFolderLoad)
+{
+    const std::string dir = test::tempDir("untrusted-inside");
+    test::GltfWriter w;
+    w.addMeshNode("tri", kTri);
+    EXPECT_EQ(loadGltf(w.writeExternal(dir + "/a.gltf", "meshes/tri.bin")).triangles.size(), 1u);
+    EXPECT_EQ(loadGltf(w.writeExternal(dir + "/b.gltf", "my mesh.bin", "my%20mesh.bin")).triangles.size(), 1u);
+    EXPECT_EQ(loadGltf(w.writeExternal(dir + "/c.gltf", "x/tri.bin", "x/../x/./tri.bin")).triangles.size(), 1u);
+    EXPECT_EQ(loadGltf(w.write(dir + "/d.gltf")).triangles.size(), 1u);  // data: URI
+}
+
+TEST(UntrustedScene, ImageUriLeavingTheFolderIsRefused)
+{
+    const std::string dir = test::tempDir("untrusted-image");
+    secretFile(dir, 100);
+    fs::create_directories(dir + "/scene");
+    test::GltfWriter w;
+    w.addMeshNode("tri", kTri);
+    w.doc()["images"] = {{{"uri", "../secret.bin"}}};
+    const std::string e = errorOf(w.write(dir + "/scene/s.gltf"));
+    EXPECT_TRUE(contains(e, "s.gltf: images[0].uri")) << e;
+    EXPECT_TRUE(contains(e, "outside the scene's folder")) << e;
+}
+
+TEST(UntrustedScene, WorkingDirectoryIsNotSearched)
+{
+    // tinygltf looks for a file in the scene's folder, then in the working directory.
+    const std::string dir = test::tempDir("untrusted-cwd");
+    fs::create_directories(dir + "/cwd");
+    test::GltfWriter w;
+    w.addMeshNode("tri", kTri);
+    w.writeExternal(dir + "/cwd/unused.gltf", "elsewhere.bin");
+    const std::string path = sceneWithBufferUri(dir, "elsewhere.bin");
+    const fs::path before = fs::current_path();
+    fs::current_path(dir + "/cwd");
+    const std::string e = errorOf(path);
+    fs::current_path(before);
+    EXPECT_TRUE(contains(e, "s.gltf: buffers[0].uri: 'elsewhere.bin' not found in the scene's folder")) << e;
+}
+
+TEST(UntrustedScene, OnlyRegularFilesAreRead)
+{
+    const std::string dir = test::tempDir("untrusted-special");
+    const std::string path = sceneWithBufferUri(dir, "sub");
+    fs::create_directories(dir + "/scene/sub");
+    std::string e = errorOf(path);
+    EXPECT_TRUE(contains(e, "s.gltf: buffers[0].uri: 'sub' is not a regular file")) << e;
+    // A FIFO would block the reader forever.
+    const std::string fifo = sceneWithBufferUri(dir, "pipe");
+    ASSERT_EQ(::mkfifo((dir + "/scene/pipe").c_str(), 0600), 0);
+    e = errorOf(fifo);
+    EXPECT_TRUE(contains(e, "s.gltf: buffers[0].uri: 'pipe' is not a regular file")) << e;
+}
+
+TEST(UntrustedScene, NoMessageQuotesAFilesSizeOrBytes)
+{
+    const std::string dir = test::tempDir("untrusted-size");
+    // A buffer file inside the folder whose size is not its byteLength: the message names the
+    // buffer and its byteLength, not the file's size.
+    const std::string path = sceneWithBufferUri(dir, "big.bin");
+    secretFile(dir + "/scene", 1221);
+    fs::rename(dir + "/scene/secret.bin", dir + "/scene/big.bin");
+    std::string e = errorOf(path);
+    EXPECT_TRUE(contains(e, "s.gltf: buffers[0]")) << e;
+    EXPECT_TRUE(contains(e, "byteLength 36")) << e;
+    EXPECT_FALSE(contains(withoutDir(e, dir), "1221")) << e;
+    // Indices read from a buffer: an out-of-range one is reported by position, not by value
+    // (the value is the file's content).
+    test::GltfWriter w;
+    w.addIndexedMeshNode("quad", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {0, 1, 1936876918u});
+    e = errorOf(w.write(dir + "/i.gltf"));
+    EXPECT_TRUE(contains(e, "i.gltf: node 0 'quad'")) << e;
+    EXPECT_TRUE(contains(e, "index at position 2 exceeds")) << e;
+    EXPECT_FALSE(contains(withoutDir(e, dir), "1936876918")) << e;
+}
+
 // --- 3. GLB framing ---------------------------------------------------------------------------
 
 void putU32(std::vector<unsigned char>& b, std::size_t at, std::uint32_t v)
