@@ -72,13 +72,19 @@ public:
             throw Error(cat(where_, ": invalid component type, type or byteStride"));
         elemSize_ = static_cast<std::size_t>(comp * ncomp);
         stride_ = static_cast<std::size_t>(stride);
-        if (bv.byteOffset + bv.byteLength > buf.data.size())
-            throw Error(cat(where_, ": bufferView ", acc_->bufferView, " lies outside buffer ",
-                            bv.buffer, buf.data.empty() ? " (was its file found?)" : ""));
+        // Offsets, lengths and counts come from the file as 64-bit integers: a sum or product
+        // near 2^64 must not wrap into something that looks in bounds.
+        std::size_t viewEnd = 0, last = 0, end = 0;
+        if (__builtin_add_overflow(bv.byteOffset, bv.byteLength, &viewEnd) || viewEnd > buf.data.size())
+            throw Error(cat(where_, ": bufferView ", acc_->bufferView, " (byteOffset ", bv.byteOffset,
+                            ", byteLength ", bv.byteLength, ") lies outside buffer ", bv.buffer,
+                            buf.data.empty() ? " (was its file found?)" : ""));
         if (acc_->count > 0 &&
-            acc_->byteOffset + stride_ * (acc_->count - 1) + elemSize_ > bv.byteLength)
-            throw Error(cat(where_, ": ", acc_->count, " elements do not fit in bufferView ",
-                            acc_->bufferView));
+            (__builtin_mul_overflow(stride_, acc_->count - 1, &last) ||
+             __builtin_add_overflow(last, acc_->byteOffset, &end) ||
+             __builtin_add_overflow(end, elemSize_, &end) || end > bv.byteLength))
+            throw Error(cat(where_, ": ", acc_->count, " elements from byteOffset ", acc_->byteOffset,
+                            " do not fit in bufferView ", acc_->bufferView));
         base_ = buf.data.data() + bv.byteOffset + acc_->byteOffset;
     }
 

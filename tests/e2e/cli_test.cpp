@@ -263,5 +263,14 @@ TEST(CliUntrusted, BufferUriOutsideTheSceneFolder)
     EXPECT_EQ(r.err.find("1221"), std::string::npos) << r.err;
 }
 
+TEST(CliUntrusted, OffsetNear2To64)
+{
+    const std::string dir = test::tempDir("cli-untrusted-wrap");
+    test::GltfWriter w = plateScene();
+    w.doc()["bufferViews"][0]["byteOffset"] = ~std::uint64_t(0) - 7;  // + byteLength wraps past 2^64
+    expectError(run("render " + w.write(dir + "/wrap.gltf") + untrustedOut(dir)), 1,
+                "wrap.gltf: node 0 'plate', mesh 0, primitive 0, accessor 0: bufferView 0");
+}
+
 }  // namespace
 }  // namespace fen

@@ -184,6 +184,43 @@ TEST(UntrustedScene, NoMessageQuotesAFilesSizeOrBytes)
     EXPECT_FALSE(contains(withoutDir(e, dir), "1936876918")) << e;
 }
 
+// --- 2. Offsets, lengths and counts cannot wrap past 2^64 ---------------------------------------
+
+TEST(UntrustedScene, OffsetsNear2To64AreRefused)
+{
+    const std::string dir = test::tempDir("untrusted-wrap");
+    const std::uint64_t top = ~std::uint64_t(0);
+    auto variant = [&](const std::string& name, auto edit) {
+        test::GltfWriter w;
+        w.addIndexedMeshNode("quad", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {0, 1, 2, 0, 2, 3});
+        edit(w.doc());
+        return errorOf(w.write(dir + "/" + name + ".gltf"));
+    };
+    // bufferView 0: 48 bytes of positions at 0; bufferView 1: 24 bytes of indices at 48.
+    std::string e = variant("view", [&](nlohmann::json& d) { d["bufferViews"][0]["byteOffset"] = top - 7; });
+    EXPECT_TRUE(contains(e, "view.gltf: node 0 'quad', mesh 0, primitive 0, accessor 0: bufferView 0")) << e;
+    e = variant("viewlen", [&](nlohmann::json& d) { d["bufferViews"][1]["byteLength"] = top - 40; });
+    EXPECT_TRUE(contains(e, "viewlen.gltf: node 0 'quad', mesh 0, primitive 0, accessor 1: bufferView 1")) << e;
+    e = variant("acc", [&](nlohmann::json& d) {
+        d["accessors"][0]["byteOffset"] = top - 3;
+        d["accessors"][0].erase("min");
+        d["accessors"][0].erase("max");
+    });
+    EXPECT_TRUE(contains(e, "acc.gltf: node 0 'quad', mesh 0, primitive 0, accessor 0")) << e;
+    EXPECT_TRUE(contains(e, "do not fit in bufferView 0")) << e;
+    // 12 * 2^62 wraps to 0: the elements "fit", then 2^62 vertices are allocated.
+    e = variant("count", [&](nlohmann::json& d) {
+        d["accessors"][0]["count"] = (std::uint64_t(1) << 62) + 1;
+        d["accessors"][0].erase("min");
+        d["accessors"][0].erase("max");
+    });
+    EXPECT_TRUE(contains(e, "count.gltf: node 0 'quad', mesh 0, primitive 0, accessor 0")) << e;
+    EXPECT_TRUE(contains(e, "do not fit in bufferView 0")) << e;
+    e = variant("indices", [&](nlohmann::json& d) { d["accessors"][1]["count"] = (std::uint64_t(1) << 62) + 1; });
+    EXPECT_TRUE(contains(e, "indices.gltf: node 0 'quad', mesh 0, primitive 0, accessor 1")) << e;
+    EXPECT_TRUE(contains(e, "do not fit in bufferView 1")) << e;
+}
+
 // --- 3. GLB framing ---------------------------------------------------------------------------
 
 void putU32(std::vector<unsigned char>& b, std::size_t at, std::uint32_t v)
