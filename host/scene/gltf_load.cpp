@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
-#include <functional>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -342,6 +341,75 @@ CameraSpec readCamera(const tinygltf::Model& m, int node, const glm::dmat4& xf, 
     return c;
 }
 
+// "nodes[3] 'window'": the glTF path of a node, with its name when it has one.
+std::string nodeRef(const tinygltf::Model& m, int node)
+{
+    const std::string& name = m.nodes[static_cast<std::size_t>(node)].name;
+    return name.empty() ? cat("nodes[", node, "]") : cat("nodes[", node, "] '", printable(name), "'");
+}
+
+// glTF nodes form disjoint strict trees (glTF 2.0, "Nodes and Hierarchy"): a node has at most one
+// parent and is not its own ancestor. A node listed twice multiplies the work (30 levels of
+// doubling: 2^30 copies from a 6 KB file), a cycle never ends: both are refused, for every node,
+// in the file or not in the scene. Returns each node's parent, -1 for a root.
+std::vector<int> checkNodeForest(const tinygltf::Model& m, const std::string& path)
+{
+    const int count = static_cast<int>(m.nodes.size());
+    std::vector<int> parent(m.nodes.size(), -1);
+    for (int i = 0; i < count; ++i) {
+        const std::vector<int>& children = m.nodes[static_cast<std::size_t>(i)].children;
+        for (std::size_t k = 0; k < children.size(); ++k) {
+            const int c = children[k];
+            const std::string where = cat(path, ": nodes[", i, "].children[", k, "]");
+            if (c < 0 || c >= count)
+                throw Error(cat(where, ": node ", c, " does not exist"));
+            if (c == i)
+                throw Error(cat(where, ": ", nodeRef(m, c), " is its own child"));
+            int& p = parent[static_cast<std::size_t>(c)];
+            if (p == i)
+                throw Error(cat(where, ": ", nodeRef(m, c), " is listed twice"));
+            if (p >= 0)
+                throw Error(cat(path, ": ", nodeRef(m, c), " is a child of both nodes[", p, "] and nodes[",
+                                i, "]; glTF nodes form trees"));
+            p = i;
+        }
+    }
+    // With one parent each, a cycle is a chain of parents that comes back to where it started.
+    enum : char { Unknown, OnChain, ReachesRoot };
+    std::vector<char> state(m.nodes.size(), Unknown);
+    for (int i = 0; i < count; ++i) {
+        int n = i;
+        while (n >= 0 && state[static_cast<std::size_t>(n)] == Unknown) {
+            state[static_cast<std::size_t>(n)] = OnChain;
+            n = parent[static_cast<std::size_t>(n)];
+        }
+        if (n >= 0 && state[static_cast<std::size_t>(n)] == OnChain)
+            throw Error(cat(path, ": ", nodeRef(m, n), " is its own ancestor (its children lead back to it)"));
+        for (n = i; n >= 0 && state[static_cast<std::size_t>(n)] == OnChain; n = parent[static_cast<std::size_t>(n)])
+            state[static_cast<std::size_t>(n)] = ReachesRoot;
+    }
+    return parent;
+}
+
+// A scene lists root nodes, each once: otherwise a subtree would be drawn twice.
+void checkSceneRoots(const tinygltf::Model& m, int sceneIndex, const std::vector<int>& parent,
+                     const std::string& path)
+{
+    const std::vector<int>& roots = m.scenes[static_cast<std::size_t>(sceneIndex)].nodes;
+    std::vector<char> listed(m.nodes.size(), 0);
+    for (std::size_t k = 0; k < roots.size(); ++k) {
+        const int r = roots[k];
+        const std::string where = cat(path, ": scenes[", sceneIndex, "].nodes[", k, "]");
+        if (r < 0 || r >= static_cast<int>(m.nodes.size()))
+            throw Error(cat(where, ": node ", r, " does not exist"));
+        if (parent[static_cast<std::size_t>(r)] >= 0)
+            throw Error(cat(where, ": ", nodeRef(m, r), " is a child of nodes[", parent[static_cast<std::size_t>(r)],
+                            "]; a scene lists root nodes only"));
+        if (listed[static_cast<std::size_t>(r)]++)
+            throw Error(cat(where, ": ", nodeRef(m, r), " is listed twice"));
+    }
+}
+
 }  // namespace
 
 Scene loadGltf(const std::string& path)
@@ -368,6 +436,8 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
         json += glb.jsonOffset;
         jsonSize = glb.jsonSize;
     }
+    // Parsers recurse (tinygltf's extras, nlohmann's dump): bound the depth before any of them.
+    checkJsonNesting(json, jsonSize, path);
     const nlohmann::json doc = parseGltfJson(json, jsonSize, path);
     SceneFolder sceneFolder(folder);
     checkGltfJson(doc, path, sceneFolder);
@@ -407,11 +477,7 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
     scene.source = path;
     scene.nodeNames.resize(model.nodes.size());
     scene.nodePortal.assign(model.nodes.size(), PortalMark::None);
-    scene.nodeParent.assign(model.nodes.size(), -1);
-    for (std::size_t i = 0; i < model.nodes.size(); ++i)
-        for (int c : model.nodes[i].children)
-            if (c >= 0 && c < static_cast<int>(model.nodes.size()))
-                scene.nodeParent[static_cast<std::size_t>(c)] = static_cast<int>(i);
+    scene.nodeParent = checkNodeForest(model, path);
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
         scene.nodeNames[i] = model.nodes[i].name;
     scene.materials = readMaterials(model, path, scene);
@@ -431,13 +497,17 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
         r.rejectUnknownKeys();
     }
 
-    std::vector<char> onPath(model.nodes.size(), 0);
-    std::function<void(int, const glm::dmat4&)> visit = [&](int node, const glm::dmat4& parent) {
-        if (node < 0 || node >= static_cast<int>(model.nodes.size()))
-            throw Error(cat(path, ": reference to node ", node, ", which does not exist"));
-        if (onPath[static_cast<std::size_t>(node)])
-            throw Error(cat(path, ": ", nodeLabel(model, node), " is its own ancestor"));
-        onPath[static_cast<std::size_t>(node)] = 1;
+    // The node forest, walked in the order a recursive walk would take (cameras keep it) with an
+    // explicit stack: a legal hierarchy may be 10,000 deep. It is a forest (checkNodeForest), so
+    // every node is visited at most once.
+    checkSceneRoots(model, sceneIndex, scene.nodeParent, path);
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    for (auto it = gscene.nodes.rbegin(); it != gscene.nodes.rend(); ++it)
+        stack.emplace_back(*it, glm::dmat4(1.0));
+    while (!stack.empty()) {
+        const int node = stack.back().first;
+        const glm::dmat4 parent = stack.back().second;
+        stack.pop_back();
         const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(node)];
         const std::string where = cat(path, ": ", nodeLabel(model, node));
         const glm::dmat4 xf = parent * localTransform(n);
@@ -521,12 +591,9 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
                 scene.sun.angularRadiusRad = deg * M_PI / 180.0;
             }
         }
-        for (int c : n.children)
-            visit(c, xf);
-        onPath[static_cast<std::size_t>(node)] = 0;
-    };
-    for (int root : gscene.nodes)
-        visit(root, glm::dmat4(1.0));
+        for (auto it = n.children.rbegin(); it != n.children.rend(); ++it)
+            stack.emplace_back(*it, xf);
+    }
 
     for (const auto& t : scene.triangles) {
         scene.bounds.grow(t.p0);

@@ -275,4 +275,30 @@ GlbLayout checkGlb(const unsigned char* data, std::size_t size, const std::strin
     return out;
 }
 
+void checkJsonNesting(const char* text, std::size_t size, const std::string& path)
+{
+    int depth = 0;
+    std::size_t line = 1;
+    bool inString = false;
+    for (std::size_t i = 0; i < size; ++i) {
+        const char c = text[i];
+        if (c == '\n')
+            ++line;
+        if (inString) {
+            if (c == '\\')
+                ++i;  // the escaped character cannot end the string (a raw newline is invalid JSON anyway)
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth)
+                throw Error(cat(path, ": JSON nested deeper than ", kMaxJsonDepth, " levels (line ", line,
+                                ", byte ", i, ")"));
+        } else if (c == ']' || c == '}') {
+            --depth;  // unbalanced text is the parser's to report
+        }
+    }
+}
+
 }  // namespace fen

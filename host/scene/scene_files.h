@@ -8,6 +8,7 @@
 //   that is the one boundary, and resolve() gives the same answer earlier, with a better message.
 // - readSceneFile: a whole regular file of at most kMaxSceneFileBytes.
 // - checkGlb: the GLB header and every chunk length against the bytes there are.
+// - checkJsonNesting: the nesting depth of raw JSON text, before a recursive parser sees it.
 // No message quotes a file's content or the size of a file other than the scene itself.
 #pragma once
 
@@ -24,6 +25,9 @@ namespace fen {
 
 // tinygltf counts bytes in `int` (images) and `unsigned int` (documents): stay below both.
 constexpr std::uint64_t kMaxSceneFileBytes = (1ull << 31) - 1;
+
+// Deeper JSON than this is refused; a glTF that fenestra reads needs about 8 levels.
+constexpr int kMaxJsonDepth = 64;
 
 class SceneFolder {
 public:
@@ -73,5 +77,11 @@ struct GlbLayout {
     std::size_t jsonOffset = 0, jsonSize = 0;
 };
 GlbLayout checkGlb(const unsigned char* data, std::size_t size, const std::string& name);
+
+// Throws Error naming `path`, the line and the byte when arrays and objects in JSON text nest
+// deeper than kMaxJsonDepth. A linear scan (brackets inside strings do not count), so that no
+// recursive parser ever sees the text: tinygltf's conversion of extras recurses, and 20,000
+// levels overflow the stack.
+void checkJsonNesting(const char* text, std::size_t size, const std::string& path);
 
 }  // namespace fen

@@ -272,5 +272,30 @@ TEST(CliUntrusted, OffsetNear2To64)
                 "wrap.gltf: node 0 'plate', mesh 0, primitive 0, accessor 0: bufferView 0");
 }
 
+TEST(CliUntrusted, DeepNestingAndDagsAreOneLineErrors)
+{
+    const std::string dir = test::tempDir("cli-untrusted-deep");
+    test::GltfWriter w = plateScene();
+    w.node(0)["extras"] = "PLACEHOLDER";
+    const std::string path = w.write(dir + "/deep.gltf");
+    std::string text = slurp(path), deep;
+    for (int i = 0; i < 20000; ++i)
+        deep += "{\"a\":";
+    deep += "1" + std::string(20000, '}');
+    text.replace(text.find("\"PLACEHOLDER\""), 13, deep);
+    std::ofstream(path) << text;
+    expectError(run("render " + path + untrustedOut(dir)), 1, "deep.gltf: JSON nested deeper than 64 levels");
+
+    test::GltfWriter d = plateScene();
+    int top = 0;  // each level lists the one below twice: 2^30 plates from a 6 KB file
+    for (int i = 0; i < 30; ++i) {
+        d.doc()["nodes"].push_back({{"children", {top, top}}});
+        top = static_cast<int>(d.doc()["nodes"].size()) - 1;
+    }
+    d.doc()["scenes"][0]["nodes"] = {1, top};
+    expectError(run("render " + d.write(dir + "/dag.gltf") + untrustedOut(dir)), 1,
+                "dag.gltf: nodes[2].children[1]: nodes[0] 'plate' is listed twice");
+}
+
 }  // namespace
 }  // namespace fen

@@ -221,6 +221,121 @@ TEST(UntrustedScene, OffsetsNear2To64AreRefused)
     EXPECT_TRUE(contains(e, "do not fit in bufferView 1")) << e;
 }
 
+// --- 4. Depth: node chains, DAGs, JSON nesting ------------------------------------------------
+
+// Replaces the JSON string "PLACEHOLDER" in a written file by `raw` (which nlohmann could not
+// dump: its serialiser recurses).
+std::string spliceRaw(const std::string& path, const std::string& raw)
+{
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t at = text.find("\"PLACEHOLDER\"");
+    EXPECT_NE(at, std::string::npos);
+    text.replace(at, 13, raw);
+    std::ofstream(path) << text;
+    return path;
+}
+
+std::string nested(int depth, const std::string& open, const std::string& inner, const std::string& close)
+{
+    std::string s;
+    for (int i = 0; i < depth; ++i)
+        s += open;
+    s += inner;
+    for (int i = 0; i < depth; ++i)
+        s += close;
+    return s;
+}
+
+TEST(UntrustedScene, LongNodeChainLoads)
+{
+    // A legal hierarchy 10,000 deep: the walk must not recurse (6,500 overflowed the stack).
+    const std::string dir = test::tempDir("untrusted-chain");
+    test::GltfWriter w;
+    w.addMeshNode("leaf", kTri);
+    const int n = 10000;
+    for (int i = 1; i <= n; ++i)
+        w.doc()["nodes"].push_back({{"children", {i - 1}}, {"translation", {0.001, 0, 0}}});
+    w.doc()["scenes"][0]["nodes"] = {n};
+    const Scene s = loadGltf(w.write(dir + "/chain.gltf"));
+    ASSERT_EQ(s.triangles.size(), 1u);
+    EXPECT_NEAR(s.triangles[0].p1.x, 11.0f, 1e-4f);
+    EXPECT_EQ(s.nodeParent[0], 1);
+}
+
+TEST(UntrustedScene, NodeWithTwoParentsIsRefused)
+{
+    const std::string dir = test::tempDir("untrusted-dag");
+    test::GltfWriter w;
+    w.addMeshNode("leaf", kTri);
+    w.doc()["nodes"].push_back({{"name", "a"}, {"children", {0}}});
+    w.doc()["nodes"].push_back({{"name", "b"}, {"children", {0}}});
+    w.doc()["scenes"][0]["nodes"] = {1, 2};
+    std::string e = errorOf(w.write(dir + "/two.gltf"));
+    EXPECT_TRUE(contains(e, "two.gltf: nodes[0] 'leaf' is a child of both nodes[1] and nodes[2]")) << e;
+    w.doc()["nodes"][1]["children"] = {0, 0};
+    w.doc()["scenes"][0]["nodes"] = {1};
+    w.doc()["nodes"][2].erase("children");
+    e = errorOf(w.write(dir + "/twice.gltf"));
+    EXPECT_TRUE(contains(e, "twice.gltf: nodes[1].children[1]: nodes[0] 'leaf' is listed twice")) << e;
+}
+
+TEST(UntrustedScene, DoublingDagIsRefusedAtOnce)
+{
+    // 30 levels, each node listing the next twice: 2^30 paths to the leaf from a 6 KB file.
+    const std::string dir = test::tempDir("untrusted-dag30");
+    test::GltfWriter w;
+    w.addMeshNode("leaf", kTri);
+    for (int i = 1; i <= 30; ++i)
+        w.doc()["nodes"].push_back({{"children", {i - 1, i - 1}}});
+    w.doc()["scenes"][0]["nodes"] = {30};
+    const std::string e = errorOf(w.write(dir + "/dag.gltf"));
+    EXPECT_TRUE(contains(e, "dag.gltf: nodes[1].children[1]: nodes[0] 'leaf' is listed twice")) << e;
+}
+
+TEST(UntrustedScene, CyclesAndNonRootSceneNodesAreRefused)
+{
+    const std::string dir = test::tempDir("untrusted-cycle");
+    test::GltfWriter w;
+    w.addMeshNode("leaf", kTri);
+    w.doc()["nodes"].push_back({{"name", "a"}, {"children", {2}}});
+    w.doc()["nodes"].push_back({{"name", "b"}, {"children", {1}}});
+    std::string e = errorOf(w.write(dir + "/cycle.gltf"));  // the cycle is outside the scene
+    EXPECT_TRUE(contains(e, "cycle.gltf: nodes[1] 'a' is its own ancestor")) << e;
+    w.doc()["nodes"][2]["children"] = {2};
+    w.doc()["nodes"][1].erase("children");
+    e = errorOf(w.write(dir + "/self.gltf"));
+    EXPECT_TRUE(contains(e, "self.gltf: nodes[2].children[0]: nodes[2] 'b' is its own child")) << e;
+    w.doc()["nodes"][2]["children"] = {0};
+    w.doc()["scenes"][0]["nodes"] = {0, 2};
+    e = errorOf(w.write(dir + "/root.gltf"));
+    EXPECT_TRUE(contains(e, "root.gltf: scenes[0].nodes[0]: nodes[0] 'leaf' is a child of nodes[2]")) << e;
+    w.doc()["scenes"][0]["nodes"] = {2, 2};
+    e = errorOf(w.write(dir + "/dup.gltf"));
+    EXPECT_TRUE(contains(e, "dup.gltf: scenes[0].nodes[1]: nodes[2] 'b' is listed twice")) << e;
+}
+
+TEST(UntrustedScene, DeepJsonIsRefusedBeforeParsing)
+{
+    const std::string dir = test::tempDir("untrusted-deep");
+    test::GltfWriter w;
+    w.addMeshNode("tri", kTri);
+    w.node(0)["extras"] = "PLACEHOLDER";
+    // 20,000 nested objects in a node's extras overflowed the stack (tinygltf recurses).
+    std::string e = errorOf(spliceRaw(w.write(dir + "/deep.gltf"), nested(20000, "{\"a\":", "1", "}")));
+    EXPECT_TRUE(contains(e, "deep.gltf: JSON nested deeper than 64 levels")) << e;
+    e = errorOf(spliceRaw(w.write(dir + "/arrays.gltf"), nested(100000, "[", "", "]")));
+    EXPECT_TRUE(contains(e, "arrays.gltf: JSON nested deeper than 64 levels")) << e;
+    // The limit is exact, and brackets inside strings (escaped quotes too) do not count:
+    // root { asset { extras: n arrays } } is 2 + n levels.
+    w.node(0).erase("extras");
+    w.doc()["asset"]["extras"] = "PLACEHOLDER";
+    const std::string text = "\"\\\"[[[[{{{{\"";
+    EXPECT_EQ(loadGltf(spliceRaw(w.write(dir + "/64.gltf"), nested(62, "[", text, "]"))).triangles.size(), 1u);
+    e = errorOf(spliceRaw(w.write(dir + "/65.gltf"), nested(63, "[", text, "]")));
+    EXPECT_TRUE(contains(e, "65.gltf: JSON nested deeper than 64 levels")) << e;
+}
+
 // --- 3. GLB framing ---------------------------------------------------------------------------
 
 void putU32(std::vector<unsigned char>& b, std::size_t at, std::uint32_t v)
