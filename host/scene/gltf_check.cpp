@@ -2,13 +2,150 @@
 #include "scene/gltf_check.h"
 
 #include <filesystem>
+#include <limits>
 
+#include "scene/json_reader.h"
 #include "scene/scene_files.h"
 #include "util/error.h"
 
 namespace fen {
 
 namespace {
+
+using nlohmann::json;
+
+// Top-level array `key` ("nodes", "meshes", ...) whose elements must all be objects; absent: empty.
+const json& objects(const json& doc, const char* key, const std::string& path)
+{
+    static const json none = json::array();
+    const json& v = member(doc, key);
+    if (v.is_null())
+        return none;
+    if (!v.is_array())
+        throw Error(cat(path, ": ", key, ": must be an array, not ", describe(v)));
+    for (std::size_t i = 0; i < v.size(); ++i)
+        if (!v[i].is_object())
+            throw Error(cat(path, ": ", key, "[", i, "]: must be an object, not ", describe(v[i])));
+    return v;
+}
+
+// An unsigned JSON integer no larger than `max`, as uint64 (tinygltf would have cast it to int).
+bool isUnsigned(const json& v, std::uint64_t max)
+{
+    return v.is_number_unsigned() && v.get<std::uint64_t>() <= max;
+}
+
+// `v` names one of `count` elements of `list`.
+void checkIndex(const json& v, std::size_t count, const char* list, const std::string& where)
+{
+    if (!isUnsigned(v, count == 0 ? 0 : count - 1) || count == 0)
+        throw Error(cat(where, ": ", describe(v), " is not an index of ", list, " (", count, " of them)"));
+}
+
+// obj[key], when present, names one of `count` elements of `list`.
+void checkIndexMember(const json& obj, const char* key, std::size_t count, const char* list,
+                      const std::string& where)
+{
+    if (obj.contains(key))
+        checkIndex(obj[key], count, list, cat(where, ".", key));
+}
+
+// obj[key], when present (or always, when required), an integer in [lo, hi].
+void checkInteger(const json& obj, const char* key, std::uint64_t lo, std::uint64_t hi, bool required,
+                  const std::string& where)
+{
+    if (!obj.contains(key)) {
+        if (required)
+            throw Error(cat(where, ".", key, ": missing"));
+        return;
+    }
+    const json& v = obj[key];
+    if (!isUnsigned(v, hi) || v.get<std::uint64_t>() < lo)
+        throw Error(cat(where, ".", key, ": must be an integer from ", lo, " to ", hi, ", not ", describe(v)));
+}
+
+// Every index fenestra or tinygltf follows, every size, offset, count and enumeration, read as
+// the 64-bit integer it is written as: tinygltf 2.7 casts indices to int (2^32 becomes 0) and
+// treats a size it cannot read as absent (a byteOffset of -4 or 4.0 becomes 0).
+void checkIndicesAndSizes(const json& doc, const std::string& path)
+{
+    const std::uint64_t any = std::numeric_limits<std::uint64_t>::max();
+    const json& scenes = objects(doc, "scenes", path);
+    const json& nodes = objects(doc, "nodes", path);
+    const json& meshes = objects(doc, "meshes", path);
+    const json& accessors = objects(doc, "accessors", path);
+    const json& bufferViews = objects(doc, "bufferViews", path);
+    const json& buffers = objects(doc, "buffers", path);
+    const json& materials = objects(doc, "materials", path);
+    const json& cameras = objects(doc, "cameras", path);
+    const json& images = objects(doc, "images", path);
+
+    if (doc.contains("scene"))
+        checkIndex(doc["scene"], scenes.size(), "scenes", path + ": scene");
+    auto nodeList = [&](const json& obj, const char* key, const std::string& where) {
+        if (!obj.contains(key))
+            return;
+        const json& list = obj[key];
+        if (!list.is_array())
+            throw Error(cat(where, ".", key, ": must be an array of node indices, not ", describe(list)));
+        for (std::size_t k = 0; k < list.size(); ++k)
+            checkIndex(list[k], nodes.size(), "nodes", cat(where, ".", key, "[", k, "]"));
+    };
+    for (std::size_t i = 0; i < scenes.size(); ++i)
+        nodeList(scenes[i], "nodes", cat(path, ": scenes[", i, "]"));
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const std::string where = cat(path, ": nodes[", i, "]");
+        nodeList(nodes[i], "children", where);
+        checkIndexMember(nodes[i], "mesh", meshes.size(), "meshes", where);
+        checkIndexMember(nodes[i], "camera", cameras.size(), "cameras", where);
+    }
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        const json& prims = member(meshes[i], "primitives");
+        const std::string mesh = cat(path, ": meshes[", i, "].primitives");
+        if (!prims.is_array())
+            throw Error(cat(mesh, ": must be an array, not ", describe(prims)));
+        for (std::size_t j = 0; j < prims.size(); ++j) {
+            const std::string where = cat(mesh, "[", j, "]");
+            const json& prim = prims[j];
+            if (!prim.is_object())
+                throw Error(cat(where, ": must be an object, not ", describe(prim)));
+            const json& attributes = member(prim, "attributes");
+            if (!attributes.is_object())
+                throw Error(cat(where, ".attributes: must be an object, not ", describe(attributes)));
+            for (auto it = attributes.begin(); it != attributes.end(); ++it)
+                checkIndex(it.value(), accessors.size(), "accessors",
+                           cat(where, ".attributes.", printable(it.key(), 60)));
+            checkIndexMember(prim, "indices", accessors.size(), "accessors", where);
+            checkIndexMember(prim, "material", materials.size(), "materials", where);
+            checkInteger(prim, "mode", 0, 6, false, where);
+        }
+    }
+    for (std::size_t i = 0; i < accessors.size(); ++i) {
+        const std::string where = cat(path, ": accessors[", i, "]");
+        checkIndexMember(accessors[i], "bufferView", bufferViews.size(), "bufferViews", where);
+        checkInteger(accessors[i], "byteOffset", 0, any, false, where);
+        checkInteger(accessors[i], "count", 1, any, true, where);
+        checkInteger(accessors[i], "componentType", 5120, 5126, true, where);
+        if (accessors[i]["componentType"] == 5124)  // there is no signed 32-bit type in glTF
+            throw Error(cat(where, ".componentType: 5124 is not a glTF component type"));
+    }
+    for (std::size_t i = 0; i < bufferViews.size(); ++i) {
+        const std::string where = cat(path, ": bufferViews[", i, "]");
+        checkIndexMember(bufferViews[i], "buffer", buffers.size(), "buffers", where);
+        if (!bufferViews[i].contains("buffer"))
+            throw Error(cat(where, ".buffer: missing"));
+        checkInteger(bufferViews[i], "byteOffset", 0, any, false, where);
+        checkInteger(bufferViews[i], "byteLength", 1, any, true, where);
+        checkInteger(bufferViews[i], "byteStride", 4, 252, false, where);
+        if (bufferViews[i].contains("byteStride") && bufferViews[i]["byteStride"].get<std::uint64_t>() % 4 != 0)
+            throw Error(cat(where, ".byteStride: ", bufferViews[i]["byteStride"].get<std::uint64_t>(),
+                            " is not a multiple of 4"));
+    }
+    for (std::size_t i = 0; i < buffers.size(); ++i)
+        checkInteger(buffers[i], "byteLength", 1, any, true, cat(path, ": buffers[", i, "]"));
+    for (std::size_t i = 0; i < images.size(); ++i)
+        checkIndexMember(images[i], "bufferView", bufferViews.size(), "bufferViews", cat(path, ": images[", i, "]"));
+}
 
 // buffers[i].uri / images[i].uri: inside the folder, and an external buffer exactly byteLength
 // long (tinygltf's rule; its own message would quote the file's size).
@@ -61,6 +198,7 @@ nlohmann::json parseGltfJson(const char* text, std::size_t size, const std::stri
 
 void checkGltfJson(const nlohmann::json& doc, const std::string& path, const SceneFolder& folder)
 {
+    checkIndicesAndSizes(doc, path);
     checkUris(doc, path, folder);
 }
 

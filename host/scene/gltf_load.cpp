@@ -191,14 +191,9 @@ std::string materialLabel(const tinygltf::Model& m, std::size_t i)
     return name.empty() ? cat("materials[", i, "]") : cat("materials[", i, "] '", name, "'");
 }
 
-// "file: materials[2] 'glass'" style context, with the extension's JSON as nlohmann::json.
-nlohmann::json extensionJson(const tinygltf::ExtensionMap& ext, const std::string& name)
-{
-    const auto it = ext.find(name);
-    return it == ext.end() ? nlohmann::json() : toJson(it->second);
-}
-
-std::vector<Material> readMaterials(const tinygltf::Model& m, const std::string& path, Scene& scene)
+// `doc` is the file's JSON as written: the extensions are read from it (json_reader.h).
+std::vector<Material> readMaterials(const tinygltf::Model& m, const nlohmann::json& doc,
+                                    const std::string& path, Scene& scene)
 {
     std::vector<Material> out;
     for (std::size_t i = 0; i < m.materials.size(); ++i) {
@@ -224,7 +219,8 @@ std::vector<Material> readMaterials(const tinygltf::Model& m, const std::string&
             src.emissiveTexture.index >= 0)
             scene.warnings.push_back(cat(where, ": emission ignored (light comes from the sun and sky only)"));
 
-        const nlohmann::json tr = extensionJson(src.extensions, "KHR_materials_transmission");
+        const nlohmann::json& extensions = member(element(member(doc, "materials"), i), "extensions");
+        const nlohmann::json& tr = member(extensions, "KHR_materials_transmission");
         if (!tr.is_null()) {
             JsonReader r(tr, where + ".extensions.KHR_materials_transmission");
             const double t = r.number("transmissionFactor", 0.0);
@@ -240,7 +236,7 @@ std::vector<Material> readMaterials(const tinygltf::Model& m, const std::string&
                 mat.transmission = static_cast<float>(t) * mat.albedo;
             }
         }
-        const nlohmann::json ior = extensionJson(src.extensions, "KHR_materials_ior");
+        const nlohmann::json& ior = member(extensions, "KHR_materials_ior");
         if (!ior.is_null()) {
             JsonReader r(ior, where + ".extensions.KHR_materials_ior");
             const double v = r.number("ior", 1.5);
@@ -280,9 +276,10 @@ SkySpec readSky(const nlohmann::json& sky, const std::string& where)
         checkLight(spec.luminance_cd_m2, r.keyPath("luminance"));
     } else if (type == "cie") {
         spec.type = SkySpec::Type::Cie;
-        spec.cieType = r.integer("cie_type");
-        if (spec.cieType < 1 || spec.cieType > 15)
-            throw Error(cat(r.keyPath("cie_type"), ": ", spec.cieType, " is not a CIE sky type (1..15)"));
+        const std::int64_t cieType = r.integer("cie_type");
+        if (cieType < 1 || cieType > 15)
+            throw Error(cat(r.keyPath("cie_type"), ": ", cieType, " is not a CIE sky type (1..15)"));
+        spec.cieType = static_cast<int>(cieType);
         spec.zenithLuminance_cd_m2 = r.number("zenith_luminance");
         if (spec.zenithLuminance_cd_m2 < 0.0)
             throw Error(cat(r.keyPath("zenith_luminance"), ": negative luminance ",
@@ -480,7 +477,7 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
     scene.nodeParent = checkNodeForest(model, path);
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
         scene.nodeNames[i] = model.nodes[i].name;
-    scene.materials = readMaterials(model, path, scene);
+    scene.materials = readMaterials(model, doc, path, scene);
     if (model.scenes.empty())
         throw Error(cat(path, ": the file has no scene"));
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
@@ -488,7 +485,7 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
         throw Error(cat(path, ": default scene ", sceneIndex, " does not exist"));
     const tinygltf::Scene& gscene = model.scenes[static_cast<std::size_t>(sceneIndex)];
 
-    const nlohmann::json sceneExtras = toJson(gscene.extras);
+    const nlohmann::json& sceneExtras = member(element(member(doc, "scenes"), static_cast<std::size_t>(sceneIndex)), "extras");
     if (!sceneExtras.is_null()) {
         const std::string where = cat(path, ": scenes[", sceneIndex, "].extras");
         JsonReader r(sceneExtras, where);
@@ -522,7 +519,8 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
         if (n.camera >= 0)
             scene.cameras.push_back(readCamera(model, node, xf, where));
 
-        const nlohmann::json extras = toJson(n.extras);
+        const nlohmann::json& rawNode = element(member(doc, "nodes"), static_cast<std::size_t>(node));
+        const nlohmann::json& extras = member(rawNode, "extras");
         if (!extras.is_null()) {
             JsonReader r(extras, where + ".extras");
             if (r.has("portal")) {
@@ -534,18 +532,19 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
                     scene.nodePortal[static_cast<std::size_t>(node)] = PortalMark::Hull;
                 else
                     throw Error(cat(r.keyPath("portal"), ": must be true, false or \"hull\", not ",
-                                    p.dump()));
+                                    describe(p)));
             }
             r.rejectUnknownKeys();
         }
 
-        const auto light = n.extensions.find("KHR_lights_punctual");
-        if (light != n.extensions.end()) {
-            JsonReader r(toJson(light->second), where + ".extensions.KHR_lights_punctual");
-            const int li = r.integer("light");
+        const nlohmann::json& light = member(member(rawNode, "extensions"), "KHR_lights_punctual");
+        if (!light.is_null()) {
+            JsonReader r(light, where + ".extensions.KHR_lights_punctual");
+            const std::int64_t li = r.integer("light");
             r.rejectUnknownKeys();
-            if (li < 0 || li >= static_cast<int>(model.lights.size()))
-                throw Error(cat(r.keyPath("light"), ": light ", li, " does not exist"));
+            if (li < 0 || li >= static_cast<std::int64_t>(model.lights.size()))
+                throw Error(cat(r.keyPath("light"), ": ", li, " is not an index of KHR_lights_punctual.lights (",
+                                model.lights.size(), " of them)"));
             const tinygltf::Light& L = model.lights[static_cast<std::size_t>(li)];
             const std::string lwhere = cat(path, ": KHR_lights_punctual.lights[", li, "]");
             if (L.type != "directional")
@@ -580,7 +579,10 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
             checkLight(std::max({scene.sun.illuminanceRgb_lux.r, scene.sun.illuminanceRgb_lux.g,
                                  scene.sun.illuminanceRgb_lux.b}),
                        lwhere + ".intensity * color");
-            const nlohmann::json lextras = toJson(L.extras);
+            const nlohmann::json& lextras =
+                member(element(member(member(member(doc, "extensions"), "KHR_lights_punctual"), "lights"),
+                               static_cast<std::size_t>(li)),
+                       "extras");
             if (!lextras.is_null()) {
                 JsonReader le(lextras, lwhere + ".extras");
                 const double deg = le.number("angular_radius_deg", 0.0);

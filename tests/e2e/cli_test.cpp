@@ -297,5 +297,20 @@ TEST(CliUntrusted, DeepNestingAndDagsAreOneLineErrors)
                 "dag.gltf: nodes[2].children[1]: nodes[0] 'plate' is listed twice");
 }
 
+TEST(CliUntrusted, WideIntegersAreNotSqueezedInto32Bits)
+{
+    const std::string dir = test::tempDir("cli-untrusted-wide");
+    const std::uint64_t k2To32 = std::uint64_t(1) << 32;
+    test::GltfWriter w = plateScene();
+    w.doc()["scenes"][0]["extras"]["sky"] = {{"type", "cie"}, {"cie_type", k2To32 + 12}, {"zenith_luminance", 1},
+                                             {"sun_altitude_deg", 45}, {"sun_azimuth_deg", 0}};
+    expectError(run("render " + w.write(dir + "/cie.gltf") + untrustedOut(dir)), 1,
+                "cie.gltf: scenes[0].extras.sky.cie_type: 4294967308 is not a CIE sky type");
+    test::GltfWriter m = plateScene();
+    m.node(0)["mesh"] = k2To32;
+    expectError(run("render " + m.write(dir + "/mesh.gltf") + untrustedOut(dir)), 1,
+                "mesh.gltf: nodes[0].mesh: 4294967296 is not an index of meshes (1 of them)");
+}
+
 }  // namespace
 }  // namespace fen

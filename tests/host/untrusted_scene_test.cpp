@@ -336,6 +336,80 @@ TEST(UntrustedScene, DeepJsonIsRefusedBeforeParsing)
     EXPECT_TRUE(contains(e, "65.gltf: JSON nested deeper than 64 levels")) << e;
 }
 
+// --- 5. Integers are read wide and range-checked -------------------------------------------------
+
+const std::uint64_t k2To32 = std::uint64_t(1) << 32;
+
+// One plate, a directional sun and a uniform sky: every key of fenestra's extras has a place.
+test::GltfWriter litScene()
+{
+    test::GltfWriter w;
+    w.addMeshNode("plate", kTri);
+    w.doc()["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "directional"}, {"intensity", 1000}}};
+    w.doc()["nodes"].push_back({{"name", "sun"}, {"rotation", {-0.7071067811865476, 0, 0, 0.7071067811865476}},
+                               {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    w.doc()["scenes"][0]["nodes"].push_back(1);
+    w.doc()["scenes"][0]["extras"] = {{"sky", {{"type", "uniform"}, {"luminance", 100}}}};
+    return w;
+}
+
+TEST(UntrustedScene, WideIntegersInExtrasAreReadWide)
+{
+    const std::string dir = test::tempDir("untrusted-wide");
+    test::GltfWriter w = litScene();
+    w.doc()["scenes"][0]["extras"]["sky"]["luminance"] = k2To32;  // was read as 0: no sky
+    const Scene s = loadGltf(w.write(dir + "/lum.gltf"));
+    EXPECT_EQ(s.sky.luminance_cd_m2, 4294967296.0);
+
+    w = litScene();
+    w.doc()["scenes"][0]["extras"]["sky"] = {{"type", "cie"}, {"cie_type", k2To32 + 12}, {"zenith_luminance", 1},
+                                             {"sun_altitude_deg", 45}, {"sun_azimuth_deg", 0}};
+    std::string e = errorOf(w.write(dir + "/cie.gltf"));  // passed as type 12
+    EXPECT_TRUE(contains(e, "cie.gltf: scenes[0].extras.sky.cie_type: 4294967308 is not a CIE sky type")) << e;
+
+    w = litScene();
+    w.doc()["extensions"]["KHR_lights_punctual"]["lights"][0]["extras"] = {{"angular_radius_deg", k2To32}};
+    e = errorOf(w.write(dir + "/radius.gltf"));  // passed as 0
+    EXPECT_TRUE(contains(e, "radius.gltf: KHR_lights_punctual.lights[0].extras.angular_radius_deg")) << e;
+
+    w = litScene();
+    w.node(1)["extensions"]["KHR_lights_punctual"]["light"] = k2To32;  // aliased light 0
+    e = errorOf(w.write(dir + "/light.gltf"));
+    EXPECT_TRUE(contains(e, "light.gltf: node 1 'sun'.extensions.KHR_lights_punctual.light")) << e;
+    EXPECT_TRUE(contains(e, "4294967296")) << e;
+}
+
+TEST(UntrustedScene, IndicesBeyond32BitsAreRefused)
+{
+    const std::string dir = test::tempDir("untrusted-index");
+    int n = 0;
+    auto expectRefused = [&](const std::string& key, auto edit) {
+        test::GltfWriter w;
+        w.addIndexedMeshNode("quad", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {0, 1, 2});
+        w.doc()["materials"] = {{{"name", "m"}}};
+        w.doc()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+        edit(w.doc());
+        const std::string name = "i" + std::to_string(n++) + ".gltf";
+        const std::string e = errorOf(w.write(dir + "/" + name));
+        EXPECT_TRUE(contains(e, name + ": " + key + ": ")) << key << ": " << e;
+        EXPECT_TRUE(contains(e, "is not an index")) << key << ": " << e;
+    };
+    expectRefused("nodes[0].mesh", [](nlohmann::json& d) { d["nodes"][0]["mesh"] = k2To32; });
+    expectRefused("nodes[0].mesh", [](nlohmann::json& d) { d["nodes"][0]["mesh"] = -1; });
+    expectRefused("nodes[0].camera", [](nlohmann::json& d) { d["nodes"][0]["camera"] = k2To32; });
+    expectRefused("nodes[0].children[0]", [](nlohmann::json& d) { d["nodes"][0]["children"] = {k2To32}; });
+    expectRefused("scenes[0].nodes[0]", [](nlohmann::json& d) { d["scenes"][0]["nodes"] = {k2To32}; });
+    expectRefused("scene", [](nlohmann::json& d) { d["scene"] = k2To32; });
+    expectRefused("meshes[0].primitives[0].attributes.POSITION",
+                  [](nlohmann::json& d) { d["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = k2To32; });
+    expectRefused("meshes[0].primitives[0].indices",
+                  [](nlohmann::json& d) { d["meshes"][0]["primitives"][0]["indices"] = k2To32 + 1; });
+    expectRefused("meshes[0].primitives[0].material",
+                  [](nlohmann::json& d) { d["meshes"][0]["primitives"][0]["material"] = k2To32; });
+    expectRefused("accessors[0].bufferView", [](nlohmann::json& d) { d["accessors"][0]["bufferView"] = k2To32; });
+    expectRefused("bufferViews[1].buffer", [](nlohmann::json& d) { d["bufferViews"][1]["buffer"] = k2To32; });
+}
+
 // --- 3. GLB framing ---------------------------------------------------------------------------
 
 void putU32(std::vector<unsigned char>& b, std::size_t at, std::uint32_t v)
