@@ -1,7 +1,10 @@
 // gltf_check.cpp — checks on a glTF document's JSON before tinygltf reads it (gltf_check.h).
 #include "scene/gltf_check.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <limits>
 
 #include "scene/json_reader.h"
@@ -181,6 +184,164 @@ void checkUris(const nlohmann::json& doc, const std::string& path, const SceneFo
     }
 }
 
+// --- Shapes and types of the members fenestra reads -------------------------------------------
+// tinygltf drops a member of the wrong type or length: a 3-element baseColorFactor left the
+// material white, a 2-element translation was ignored, a string yfov or aspectRatio fell back to
+// a default. JSON numbers are always finite here (nlohmann refuses 1e400).
+
+bool has(const json& obj, const char* key) { return obj.is_object() && obj.contains(key); }
+
+void checkString(const json& obj, const char* key, bool required, const std::string& where)
+{
+    if (!has(obj, key)) {
+        if (required)
+            throw Error(cat(where, ".", key, ": missing"));
+        return;
+    }
+    if (!obj[key].is_string())
+        throw Error(cat(where, ".", key, ": must be a string, not ", describe(obj[key])));
+}
+
+void checkNumber(const json& obj, const char* key, bool required, const std::string& where)
+{
+    if (!has(obj, key)) {
+        if (required)
+            throw Error(cat(where, ".", key, ": missing"));
+        return;
+    }
+    if (!obj[key].is_number())
+        throw Error(cat(where, ".", key, ": must be a number, not ", describe(obj[key])));
+}
+
+void checkObject(const json& obj, const char* key, const std::string& where)
+{
+    if (has(obj, key) && !obj[key].is_object())
+        throw Error(cat(where, ".", key, ": must be a JSON object, not ", describe(obj[key])));
+}
+
+// obj[key], when present: an array of exactly n numbers.
+void checkNumbers(const json& obj, const char* key, std::size_t n, const std::string& where)
+{
+    if (!has(obj, key))
+        return;
+    const json& v = obj[key];
+    if (!v.is_array() || v.size() != n)
+        throw Error(cat(where, ".", key, ": must be an array of ", n, " numbers, not ", describe(v)));
+    for (std::size_t k = 0; k < n; ++k)
+        if (!v[k].is_number())
+            throw Error(cat(where, ".", key, "[", k, "]: must be a number, not ", describe(v[k])));
+}
+
+void checkStrings(const json& doc, const char* key, const std::string& path)
+{
+    if (!has(doc, key))
+        return;
+    const json& v = doc[key];
+    if (!v.is_array())
+        throw Error(cat(path, ": ", key, ": must be an array of strings, not ", describe(v)));
+    for (std::size_t k = 0; k < v.size(); ++k)
+        if (!v[k].is_string())
+            throw Error(cat(path, ": ", key, "[", k, "]: must be a string, not ", describe(v[k])));
+}
+
+void checkNode(const json& node, const std::string& where)
+{
+    checkString(node, "name", false, where);
+    checkObject(node, "extensions", where);
+    checkNumbers(node, "matrix", 16, where);
+    checkNumbers(node, "translation", 3, where);
+    checkNumbers(node, "rotation", 4, where);
+    checkNumbers(node, "scale", 3, where);
+    // tinygltf would take the matrix and drop the rest without a word.
+    if (has(node, "matrix") && (has(node, "translation") || has(node, "rotation") || has(node, "scale")))
+        throw Error(cat(where, ": has both a matrix and translation/rotation/scale; glTF allows one or the other"));
+    if (has(node, "rotation")) {
+        // A non-unit quaternion is a rotation and a scale and a shear; exporters write unit ones
+        // to float precision, far inside this tolerance.
+        double len2 = 0.0;
+        for (const json& q : node["rotation"])
+            len2 += q.get<double>() * q.get<double>();
+        if (!(std::fabs(std::sqrt(len2) - 1.0) <= 1e-3))
+            throw Error(cat(where, ".rotation: must be a unit quaternion (its length is ", std::sqrt(len2), ")"));
+    }
+}
+
+void checkMaterial(const json& m, const std::string& where)
+{
+    checkString(m, "name", false, where);
+    checkObject(m, "pbrMetallicRoughness", where);
+    const json& pbr = member(m, "pbrMetallicRoughness");
+    checkNumbers(pbr, "baseColorFactor", 4, where + ".pbrMetallicRoughness");
+    checkObject(pbr, "baseColorTexture", where + ".pbrMetallicRoughness");
+    checkNumbers(m, "emissiveFactor", 3, where);
+    checkObject(m, "emissiveTexture", where);
+    checkObject(m, "extensions", where);
+}
+
+void checkCamera(const json& c, const std::string& where)
+{
+    checkString(c, "name", false, where);
+    checkString(c, "type", true, where);
+    checkObject(c, "perspective", where);
+    const json& p = member(c, "perspective");
+    if (!p.is_object())
+        return;  // an orthographic camera: refused by name when it is used
+    const std::string at = where + ".perspective";
+    checkNumber(p, "yfov", true, at);
+    checkNumber(p, "znear", false, at);
+    checkNumber(p, "zfar", false, at);
+    if (has(p, "aspectRatio") && !(p["aspectRatio"].is_number() && p["aspectRatio"].get<double>() > 0.0))
+        throw Error(cat(at, ".aspectRatio: must be a positive number, not ", describe(p["aspectRatio"])));
+}
+
+void checkLights(const json& doc, const std::string& path)
+{
+    if (has(doc, "extensions") && !doc["extensions"].is_object())
+        throw Error(cat(path, ": extensions: must be a JSON object, not ", describe(doc["extensions"])));
+    const json& ext = member(member(doc, "extensions"), "KHR_lights_punctual");
+    if (ext.is_null())
+        return;
+    if (!ext.is_object())
+        throw Error(cat(path, ": extensions.KHR_lights_punctual: must be a JSON object, not ", describe(ext)));
+    const json& lights = objects(ext, "lights", path + ": KHR_lights_punctual");
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const std::string where = cat(path, ": KHR_lights_punctual.lights[", i, "]");
+        checkString(lights[i], "name", false, where);
+        checkString(lights[i], "type", true, where);
+        checkNumber(lights[i], "intensity", false, where);
+        checkNumbers(lights[i], "color", 3, where);
+    }
+}
+
+void checkShapes(const json& doc, const std::string& path)
+{
+    checkStrings(doc, "extensionsUsed", path);
+    checkStrings(doc, "extensionsRequired", path);
+    const json& nodes = objects(doc, "nodes", path);
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+        checkNode(nodes[i], cat(path, ": nodes[", i, "]"));
+    const json& materials = objects(doc, "materials", path);
+    for (std::size_t i = 0; i < materials.size(); ++i)
+        checkMaterial(materials[i], cat(path, ": materials[", i, "]"));
+    const json& cameras = objects(doc, "cameras", path);
+    for (std::size_t i = 0; i < cameras.size(); ++i)
+        checkCamera(cameras[i], cat(path, ": cameras[", i, "]"));
+    const json& accessors = objects(doc, "accessors", path);
+    for (std::size_t i = 0; i < accessors.size(); ++i) {
+        const std::string where = cat(path, ": accessors[", i, "]");
+        const json& type = member(accessors[i], "type");
+        static const char* const types[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+        if (!type.is_string() || std::find(std::begin(types), std::end(types), type.get<std::string>()) == std::end(types))
+            throw Error(cat(where, ".type: must be one of SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3, MAT4, not ",
+                            describe(type)));
+        checkObject(accessors[i], "sparse", where);
+    }
+    const json& scenes = objects(doc, "scenes", path);
+    for (std::size_t i = 0; i < scenes.size(); ++i)
+        checkString(scenes[i], "name", false, cat(path, ": scenes[", i, "]"));
+    checkLights(doc, path);
+}
+
 }  // namespace
 
 nlohmann::json parseGltfJson(const char* text, std::size_t size, const std::string& path)
@@ -199,6 +360,7 @@ nlohmann::json parseGltfJson(const char* text, std::size_t size, const std::stri
 void checkGltfJson(const nlohmann::json& doc, const std::string& path, const SceneFolder& folder)
 {
     checkIndicesAndSizes(doc, path);
+    checkShapes(doc, path);
     checkUris(doc, path, folder);
 }
 

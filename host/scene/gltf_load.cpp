@@ -32,6 +32,15 @@ std::string nodeLabel(const tinygltf::Model& m, int node)
     return name.empty() ? cat("node ", node) : cat("node ", node, " '", name, "'");
 }
 
+bool isFiniteMatrix(const glm::dmat4& m)
+{
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r]))
+                return false;
+    return true;
+}
+
 glm::dmat4 localTransform(const tinygltf::Node& n)
 {
     if (n.matrix.size() == 16)
@@ -324,6 +333,9 @@ CameraSpec readCamera(const tinygltf::Model& m, int node, const glm::dmat4& xf, 
     c.nodeName = n.name;
     c.cameraName = cam.name;
     c.position = glm::dvec3(xf[3]);
+    if (!isFinite(glm::vec3(c.position)))  // the renderer places it in floats
+        throw Error(cat(where, ": camera position (", c.position.x, ", ", c.position.y, ", ", c.position.z,
+                        ") is beyond float range"));
     const glm::dvec3 back = glm::dvec3(xf[2]), upRaw = glm::dvec3(xf[1]);
     if (glm::length(back) == 0.0 || glm::length(upRaw) == 0.0)
         throw Error(cat(where, ": camera transform is degenerate"));
@@ -508,6 +520,14 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
         const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(node)];
         const std::string where = cat(path, ": ", nodeLabel(model, node));
         const glm::dmat4 xf = parent * localTransform(n);
+        // Finite numbers whose product overflows: a camera at infinity renders a flat image, a sun
+        // along NaN nothing. (Vertices are checked one by one.)
+        const bool placesSomething =
+            n.camera >= 0 || !member(member(element(member(doc, "nodes"), static_cast<std::size_t>(node)),
+                                            "extensions"), "KHR_lights_punctual").is_null();
+        if (placesSomething && !isFiniteMatrix(xf))
+            throw Error(cat(where, ": its world transform is not finite (the transforms of it and its "
+                                   "parents overflow)"));
         if (n.mesh >= 0) {
             if (n.mesh >= static_cast<int>(model.meshes.size()))
                 throw Error(cat(where, " names mesh ", n.mesh, ", which does not exist"));

@@ -312,5 +312,19 @@ TEST(CliUntrusted, WideIntegersAreNotSqueezedInto32Bits)
                 "mesh.gltf: nodes[0].mesh: 4294967296 is not an index of meshes (1 of them)");
 }
 
+TEST(CliUntrusted, WrongShapesAreErrors)
+{
+    const std::string dir = test::tempDir("cli-untrusted-shape");
+    test::GltfWriter t = plateScene();
+    t.node(1)["translation"] = {0, 3};  // was ignored: the camera sat at the origin
+    expectError(run("render " + t.write(dir + "/t.gltf") + untrustedOut(dir)), 1,
+                "t.gltf: nodes[1].translation: must be an array of 3 numbers");
+    test::GltfWriter c = plateScene();
+    c.doc()["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.2, 0.2}}}}}};
+    c.doc()["meshes"][0]["primitives"][0]["material"] = 0;  // was white
+    expectError(run("render " + c.write(dir + "/c.gltf") + untrustedOut(dir)), 1,
+                "c.gltf: materials[0].pbrMetallicRoughness.baseColorFactor: must be an array of 4 numbers");
+}
+
 }  // namespace
 }  // namespace fen

@@ -410,6 +410,103 @@ TEST(UntrustedScene, IndicesBeyond32BitsAreRefused)
     expectRefused("bufferViews[1].buffer", [](nlohmann::json& d) { d["bufferViews"][1]["buffer"] = k2To32; });
 }
 
+// --- 6. Types and shapes ----------------------------------------------------------------------
+
+// litScene plus a camera node (nodes[2] 'cam') and a material on the plate.
+test::GltfWriter fullScene()
+{
+    test::GltfWriter w = litScene();
+    w.doc()["meshes"][0]["primitives"][0]["material"] = 0;
+    w.doc()["materials"] = {{{"name", "glass"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}},
+                             {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.9}}}}}}};
+    w.doc()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+    w.doc()["nodes"].push_back({{"name", "cam"}, {"camera", 0}, {"translation", {0, 1, 3}}});
+    w.doc()["scenes"][0]["nodes"].push_back(2);
+    return w;
+}
+
+TEST(UntrustedScene, WrongShapesAndTypesAreErrors)
+{
+    const std::string dir = test::tempDir("untrusted-shape");
+    {
+        test::GltfWriter w = fullScene();
+        const Scene s = loadGltf(w.write(dir + "/ok.gltf"));
+        ASSERT_EQ(s.cameras.size(), 1u);
+        EXPECT_TRUE(s.materials[0].glass);
+    }
+    int n = 0;
+    auto expectError = [&](const std::string& fragment, auto edit) {
+        test::GltfWriter w = fullScene();
+        edit(w.doc());
+        const std::string name = "s" + std::to_string(n++) + ".gltf";
+        const std::string e = errorOf(w.write(dir + "/" + name));
+        EXPECT_TRUE(contains(e, name + ": " + fragment)) << fragment << " -- " << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    };
+    // Each of these loaded, silently wrong: a white material, an ignored translation, a dropped
+    // mesh, opaque glass, no sky, an unknown key unnoticed.
+    expectError("materials[0].pbrMetallicRoughness.baseColorFactor: must be an array of 4 numbers",
+                [](auto& d) { d["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {0.5, 0.5, 0.5}; });
+    expectError("nodes[2].translation: must be an array of 3 numbers",
+                [](auto& d) { d["nodes"][2]["translation"] = {0, 1}; });
+    expectError("nodes[2].translation[1]: must be a number, not \"1\"",
+                [](auto& d) { d["nodes"][2]["translation"] = {0, "1", 3}; });
+    expectError("nodes[0].mesh: \"0\" is not an index of meshes", [](auto& d) { d["nodes"][0]["mesh"] = "0"; });
+    expectError("materials[0] 'glass'.extensions.KHR_materials_transmission: must be a JSON object",
+                [](auto& d) { d["materials"][0]["extensions"]["KHR_materials_transmission"] = {0.9}; });
+    expectError("scenes[0].extras.sky.type: missing", [](auto& d) { d["scenes"][0]["extras"]["sky"] = nlohmann::json::object(); });
+    expectError("scenes[0].extras.sky.brightness: unknown key",
+                [](auto& d) { d["scenes"][0]["extras"]["sky"]["brightness"] = nlohmann::json::array(); });
+    expectError("node 2 'cam'.extras.window: unknown key",
+                [](auto& d) { d["nodes"][2]["extras"] = {{"window", nlohmann::json::array()}}; });
+    expectError("nodes[2].rotation: must be a unit quaternion",
+                [](auto& d) { d["nodes"][2]["rotation"] = {0, 0, 0, 0}; });
+    expectError("nodes[2]: has both a matrix and translation/rotation/scale",
+                [](auto& d) { d["nodes"][2]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; });
+    expectError("nodes[2].matrix: must be an array of 16 numbers", [](auto& d) {
+        d["nodes"][2].erase("translation");
+        d["nodes"][2]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    });
+    expectError("cameras[0].perspective.aspectRatio: must be a positive number",
+                [](auto& d) { d["cameras"][0]["perspective"]["aspectRatio"] = "wide"; });
+    expectError("cameras[0].perspective.yfov: must be a number",
+                [](auto& d) { d["cameras"][0]["perspective"]["yfov"] = {0.8}; });
+    expectError("KHR_lights_punctual.lights[0].intensity: must be a number",
+                [](auto& d) { d["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = "bright"; });
+    expectError("KHR_lights_punctual.lights[0].color: must be an array of 3 numbers",
+                [](auto& d) { d["extensions"]["KHR_lights_punctual"]["lights"][0]["color"] = {1, 1}; });
+    expectError("materials[0].emissiveFactor: must be an array of 3 numbers",
+                [](auto& d) { d["materials"][0]["emissiveFactor"] = {1}; });
+    expectError("extensionsRequired[0]: must be a string", [](auto& d) { d["extensionsRequired"] = {7}; });
+    expectError("accessors[0].type: must be one of SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3, MAT4",
+                [](auto& d) { d["accessors"][0]["type"] = "VEC9"; });
+    expectError("nodes[2].name: must be a string", [](auto& d) { d["nodes"][2]["name"] = 3; });
+}
+
+TEST(UntrustedScene, NonFiniteTransformsAreErrors)
+{
+    // Finite numbers in the file whose product overflows: the camera sat at infinity and the
+    // image came out flat.
+    const std::string dir = test::tempDir("untrusted-inf");
+    test::GltfWriter w = fullScene();
+    w.doc()["nodes"].push_back({{"name", "far"}, {"translation", {0, 1e308, 0}}, {"children", {2}}});
+    w.doc()["nodes"][2]["translation"] = {0, 1e308, 0};
+    w.doc()["scenes"][0]["nodes"] = {0, 1, 3};
+    std::string e = errorOf(w.write(dir + "/cam.gltf"));
+    EXPECT_TRUE(contains(e, "cam.gltf: node 2 'cam': its world transform is not finite")) << e;
+    // Finite in double, beyond float, which the renderer uses.
+    w.doc()["nodes"][3]["translation"] = {0, 1e39, 0};
+    w.doc()["nodes"][2]["translation"] = {0, 1e39, 0};
+    e = errorOf(w.write(dir + "/float.gltf"));
+    EXPECT_TRUE(contains(e, "float.gltf: node 2 'cam': camera position")) << e;
+    test::GltfWriter sun = fullScene();
+    sun.doc()["nodes"].push_back({{"name", "huge"}, {"scale", {1e300, 1e300, 1e300}}, {"children", {1}}});
+    sun.doc()["nodes"][1]["scale"] = {1e300, 1e300, 1e300};
+    sun.doc()["scenes"][0]["nodes"] = {0, 2, 3};
+    e = errorOf(sun.write(dir + "/sun.gltf"));
+    EXPECT_TRUE(contains(e, "sun.gltf: node 1 'sun': its world transform is not finite")) << e;
+}
+
 // --- 3. GLB framing ---------------------------------------------------------------------------
 
 void putU32(std::vector<unsigned char>& b, std::size_t at, std::uint32_t v)
