@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -419,6 +420,99 @@ void checkSceneRoots(const tinygltf::Model& m, int sceneIndex, const std::vector
     }
 }
 
+// A box in double: the bounds of a scene a thousand kilometres wide, and their differences.
+struct Box {
+    glm::dvec3 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
+    void grow(const glm::dvec3& p)
+    {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    void grow(const Box& b)
+    {
+        lo = glm::min(lo, b.lo);
+        hi = glm::max(hi, b.hi);
+    }
+    bool empty() const { return !(lo.x <= hi.x); }
+    double diameter() const { return empty() ? 0.0 : glm::length(hi - lo); }
+    double distanceTo(const glm::dvec3& p) const
+    {
+        return glm::length(glm::max(glm::max(lo - p, p - hi), glm::dvec3(0.0)));
+    }
+};
+
+// Uniform emission starts paths on a disk as wide as the scene's bounding sphere, so a node far
+// from the rest (one triangle a thousand kilometres away) or much larger than it (a ground plane
+// kilometres wide) leaves the part the camera sees a tiny share of the paths: the interior goes
+// dark and noisy. Warned about, naming the node, when
+//  (1) the bounding box of all geometry is more than kDominance times larger in diameter than
+//      the box of the geometry outside the node's subtree (a node is taken with its descendants,
+//      so that a far object built of several nodes is found by its root), and
+//  (2) that rest is what the scene is about: a camera is nearer to its box than to the node's
+//      (strictly: a camera inside both boxes decides nothing), or, in a scene without cameras,
+//      the rest is the larger part. Without (2) a room would be reported for the small lamp
+//      inside it: removing the room shrinks the box as much.
+// The topmost such node is named, once. Not found: far geometry split among several root nodes
+// that are far from the rest but near each other (no one of them alone shrinks the box).
+void warnAboutDominantGeometry(const std::vector<int>& order, const std::vector<int>& parent, Scene& scene)
+{
+    constexpr double kDominance = 10.0;
+    const std::size_t count = order.size();
+    if (count < 2)
+        return;
+    std::vector<std::size_t> pre(parent.size(), 0);
+    for (std::size_t k = 0; k < count; ++k)
+        pre[static_cast<std::size_t>(order[k])] = k;
+    std::vector<Box> own(count), subtree(count);
+    for (std::size_t t = 0; t < scene.triangles.size(); ++t)
+        for (const glm::vec3* p : {&scene.triangles[t].p0, &scene.triangles[t].p1, &scene.triangles[t].p2})
+            own[pre[scene.triangleNode[t]]].grow(glm::dvec3(*p));
+    // Pre-order puts a subtree in one run [k, end[k]) after its root: sizes from the back.
+    std::vector<std::size_t> end(count);
+    for (std::size_t k = count; k-- > 0;) {
+        subtree[k].grow(own[k]);
+        end[k] = std::max(end[k], k + 1);
+        const int p = parent[static_cast<std::size_t>(order[k])];
+        if (p >= 0) {
+            const std::size_t pk = pre[static_cast<std::size_t>(p)];
+            subtree[pk].grow(subtree[k]);
+            end[pk] = std::max(end[pk], end[k]);
+        }
+    }
+    std::vector<Box> before(count + 1), after(count + 1);  // boxes of order[0, k) and order[k, count)
+    for (std::size_t k = 0; k < count; ++k) {
+        before[k + 1] = before[k];
+        before[k + 1].grow(own[k]);
+    }
+    for (std::size_t k = count; k-- > 0;) {
+        after[k] = after[k + 1];
+        after[k].grow(own[k]);
+    }
+    const double all = before[count].diameter();
+    for (std::size_t k = 0; k < count;) {
+        Box rest = before[k];
+        rest.grow(after[end[k]]);
+        const double restDiameter = rest.diameter();
+        bool seen = false;
+        for (const CameraSpec& c : scene.cameras)
+            seen = seen || rest.distanceTo(c.position) < subtree[k].distanceTo(c.position);
+        const bool restMatters = scene.cameras.empty() ? subtree[k].diameter() < restDiameter : seen;
+        if (!rest.empty() && !subtree[k].empty() && all > kDominance * restDiameter && restMatters) {
+            const int node = order[k];
+            const std::string& name = scene.nodeNames[static_cast<std::size_t>(node)];
+            scene.warnings.push_back(cat(
+                scene.source, ": node ", node, name.empty() ? "" : cat(" '", printable(name), "'"),
+                " makes the scene's bounding box ", all / std::max(restDiameter, 1e-30), " times larger (",
+                all, " m across) than the rest of the geometry (", restDiameter,
+                " m): uniform emission spreads its paths over the whole box, and the rest may come out "
+                "dark and noisy (--method portal does not mind)"));
+            k = end[k];  // its descendants would say the same
+        } else {
+            ++k;
+        }
+    }
+}
+
 }  // namespace
 
 Scene loadGltf(const std::string& path)
@@ -511,12 +605,14 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
     // every node is visited at most once.
     checkSceneRoots(model, sceneIndex, scene.nodeParent, path);
     std::vector<std::pair<int, glm::dmat4>> stack;
+    std::vector<int> order;  // the nodes in the order visited
     for (auto it = gscene.nodes.rbegin(); it != gscene.nodes.rend(); ++it)
         stack.emplace_back(*it, glm::dmat4(1.0));
     while (!stack.empty()) {
         const int node = stack.back().first;
         const glm::dmat4 parent = stack.back().second;
         stack.pop_back();
+        order.push_back(node);
         const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(node)];
         const std::string where = cat(path, ": ", nodeLabel(model, node));
         const glm::dmat4 xf = parent * localTransform(n);
@@ -622,6 +718,7 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
         scene.bounds.grow(t.p1);
         scene.bounds.grow(t.p2);
     }
+    warnAboutDominantGeometry(order, scene.nodeParent, scene);
     // A CIE sky is drawn for a sun position; a directional light elsewhere is likely a mistake.
     if (scene.sun.present && scene.sky.type == SkySpec::Type::Cie) {
         const glm::dvec3 toSun = -scene.sun.travelDirection;

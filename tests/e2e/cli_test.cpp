@@ -326,5 +326,18 @@ TEST(CliUntrusted, WrongShapesAreErrors)
                 "c.gltf: materials[0].pbrMetallicRoughness.baseColorFactor: must be an array of 4 numbers");
 }
 
+TEST(CliUntrusted, FarGeometryIsAWarning)
+{
+    // A triangle a thousand kilometres away: the render goes on, with a word about it.
+    const std::string dir = test::tempDir("cli-untrusted-far");
+    test::GltfWriter w = plateScene();
+    w.addMeshNode("speck", {{{1e6f, 0, 0}, {1e6f + 1, 0, 0}, {1e6f, 1, 0}}});
+    const CliRun r = run("render " + w.write(dir + "/far.gltf") + " --out " + dir +
+                         "/o.exr --paths 20000 --width 32 --no-progress");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("fenestra: warning: " + dir + "/far.gltf: node 2 'speck' makes the scene's bounding box"),
+              std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace fen

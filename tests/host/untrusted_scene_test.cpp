@@ -594,5 +594,98 @@ TEST(UntrustedScene, GlbHeaderIsChecked)
     EXPECT_TRUE(contains(e, "empty.glb: too short")) << e;
 }
 
+// --- 7. Far geometry is reported ----------------------------------------------------------------
+
+// Two triangles making a w x w square at height y, centred on (cx, cz).
+std::vector<Triangle> square(float w, float y = 0.0f, float cx = 0.0f, float cz = 0.0f)
+{
+    const float h = 0.5f * w;
+    return {{{cx - h, y, cz - h}, {cx + h, y, cz - h}, {cx + h, y, cz + h}},
+            {{cx - h, y, cz - h}, {cx + h, y, cz + h}, {cx - h, y, cz + h}}};
+}
+
+// A 5 m room (floor, ceiling) with a camera in it: nodes 0, 1 and 2 'cam'.
+test::GltfWriter roomWithCamera()
+{
+    test::GltfWriter w;
+    w.addMeshNode("floor", square(5.0f));
+    w.addMeshNode("ceiling", square(5.0f, 2.8f));
+    w.doc()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+    w.doc()["nodes"].push_back({{"name", "cam"}, {"camera", 0}, {"translation", {0, 1.5, 2}}});
+    w.doc()["scenes"][0]["nodes"].push_back(2);
+    return w;
+}
+
+std::vector<std::string> farWarnings(const Scene& s)
+{
+    std::vector<std::string> out;
+    for (const auto& w : s.warnings)
+        if (contains(w, "bounding box"))
+            out.push_back(w);
+    return out;
+}
+
+TEST(UntrustedScene, FarGeometryIsReported)
+{
+    const std::string dir = test::tempDir("untrusted-far");
+    {
+        // One triangle a thousand kilometres away widened the emission disk 200,000-fold.
+        test::GltfWriter w = roomWithCamera();
+        w.addMeshNode("speck", {{{1e6f, 0, 0}, {1e6f + 1, 0, 0}, {1e6f, 1, 0}}});
+        const auto warnings = farWarnings(loadGltf(w.write(dir + "/speck.gltf")));
+        ASSERT_EQ(warnings.size(), 1u);
+        EXPECT_TRUE(contains(warnings[0], "speck.gltf: node 3 'speck'")) << warnings[0];
+    }
+    {
+        // A far object of several nodes is named by its root, once.
+        test::GltfWriter w = roomWithCamera();
+        const int a = w.addMeshNode("part a", square(1.0f, 0.0f, 5e4f, 0.0f));
+        const int b = w.addMeshNode("part b", square(1.0f, 2.0f, 5e4f, 0.0f));
+        w.doc()["nodes"].push_back({{"name", "far house"}, {"children", {a, b}}});
+        w.doc()["scenes"][0]["nodes"] = {0, 1, 2, 5};
+        const auto warnings = farWarnings(loadGltf(w.write(dir + "/group.gltf")));
+        ASSERT_EQ(warnings.size(), 1u);
+        EXPECT_TRUE(contains(warnings[0], "group.gltf: node 5 'far house'")) << warnings[0];
+    }
+    {
+        // A ground plane 2 km wide under the room dominates the box as much, and is reported.
+        test::GltfWriter w = roomWithCamera();
+        w.addMeshNode("ground", square(2000.0f, -0.01f));
+        const auto warnings = farWarnings(loadGltf(w.write(dir + "/ground.gltf")));
+        ASSERT_EQ(warnings.size(), 1u);
+        EXPECT_TRUE(contains(warnings[0], "node 3 'ground'")) << warnings[0];
+    }
+    {
+        // Without a camera, the smaller part is the odd one out.
+        test::GltfWriter w;
+        w.addMeshNode("floor", square(5.0f));
+        w.addMeshNode("speck", {{{0, 0, 1e5f}, {1, 0, 1e5f}, {0, 1, 1e5f}}});
+        const auto warnings = farWarnings(loadGltf(w.write(dir + "/nocam.gltf")));
+        ASSERT_EQ(warnings.size(), 1u);
+        EXPECT_TRUE(contains(warnings[0], "node 1 'speck'")) << warnings[0];
+    }
+}
+
+TEST(UntrustedScene, OrdinaryScenesHaveNoFarGeometryWarning)
+{
+    const std::string dir = test::tempDir("untrusted-near");
+    {
+        // The room itself, seen from inside, is not "far" from a small lamp: it holds the camera.
+        test::GltfWriter w = roomWithCamera();
+        w.addMeshNode("lamp", square(0.1f, 2.5f));
+        EXPECT_TRUE(farWarnings(loadGltf(w.write(dir + "/lamp.gltf"))).empty());
+    }
+    {
+        // A garden seven times the room's diameter: below the threshold of 10.
+        test::GltfWriter w = roomWithCamera();
+        w.addMeshNode("garden", square(40.0f, -0.01f));
+        EXPECT_TRUE(farWarnings(loadGltf(w.write(dir + "/garden.gltf"))).empty());
+    }
+    for (const char* name : {"room.gltf", "inner_room.gltf", "bay_window.gltf"}) {
+        const Scene s = loadGltf(std::string(FEN_SCENES_DIR) + "/" + name);
+        EXPECT_TRUE(farWarnings(s).empty()) << name << ": " << farWarnings(s).front();
+    }
+}
+
 }  // namespace
 }  // namespace fen
