@@ -146,8 +146,24 @@ void checkIndicesAndSizes(const json& doc, const std::string& path)
     }
     for (std::size_t i = 0; i < buffers.size(); ++i)
         checkInteger(buffers[i], "byteLength", 1, any, true, cat(path, ": buffers[", i, "]"));
-    for (std::size_t i = 0; i < images.size(); ++i)
-        checkIndexMember(images[i], "bufferView", bufferViews.size(), "bufferViews", cat(path, ": images[", i, "]"));
+    // tinygltf passes an image's bytes on as &buffer.data[byteOffset] without a check of its own
+    // (accessors' views are checked where they are read, gltf_load.cpp).
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        const std::string where = cat(path, ": images[", i, "]");
+        checkIndexMember(images[i], "bufferView", bufferViews.size(), "bufferViews", where);
+        if (!images[i].contains("bufferView"))
+            continue;
+        const std::size_t v = images[i]["bufferView"].get<std::size_t>();
+        const json& view = bufferViews[v];
+        const std::size_t b = view["buffer"].get<std::size_t>();
+        const std::uint64_t offset = view.value("byteOffset", std::uint64_t(0));
+        const std::uint64_t length = view["byteLength"].get<std::uint64_t>();
+        const std::uint64_t bufferLength = buffers[b]["byteLength"].get<std::uint64_t>();
+        std::uint64_t end = 0;
+        if (__builtin_add_overflow(offset, length, &end) || end > bufferLength)
+            throw Error(cat(where, ".bufferView: bufferViews[", v, "] (byteOffset ", offset, ", byteLength ", length,
+                            ") lies outside buffers[", b, "] (byteLength ", bufferLength, ")"));
+    }
 }
 
 // buffers[i].uri / images[i].uri: inside the folder, and an external buffer exactly byteLength

@@ -507,6 +507,19 @@ TEST(UntrustedScene, NonFiniteTransformsAreErrors)
     EXPECT_TRUE(contains(e, "sun.gltf: node 1 'sun': its world transform is not finite")) << e;
 }
 
+TEST(UntrustedScene, ImageBufferViewOutsideItsBufferIsRefused)
+{
+    // tinygltf hands an image's bytes to the image loader as &buffer.data[byteOffset], unchecked.
+    const std::string dir = test::tempDir("untrusted-imageview");
+    test::GltfWriter w;
+    w.addMeshNode("tri", kTri);
+    w.doc()["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", std::uint64_t(1) << 63}, {"byteLength", 4}});
+    w.doc()["images"] = {{{"bufferView", 1}, {"mimeType", "image/png"}}};
+    const std::string e = errorOf(w.write(dir + "/img.gltf"));
+    EXPECT_TRUE(contains(e, "img.gltf: images[0].bufferView: bufferViews[1] (byteOffset 9223372036854775808, "
+                            "byteLength 4) lies outside buffers[0] (byteLength 36)")) << e;
+}
+
 // --- 3. GLB framing ---------------------------------------------------------------------------
 
 void putU32(std::vector<unsigned char>& b, std::size_t at, std::uint32_t v)
