@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "scene/gltf_load.h"
+#include "scene/scene_files.h"
 #include "support/gltf_writer.h"
 #include "util/error.h"
 
@@ -698,6 +699,44 @@ TEST(UntrustedScene, OrdinaryScenesHaveNoFarGeometryWarning)
         const Scene s = loadGltf(std::string(FEN_SCENES_DIR) + "/" + name);
         EXPECT_TRUE(farWarnings(s).empty()) << name << ": " << farWarnings(s).front();
     }
+}
+
+// --- 8. The fuzz target's seeds ---------------------------------------------------------------
+
+std::vector<unsigned char> readBytes(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(UntrustedScene, FuzzSeedsLoadAsTheFuzzerSeesThem)
+{
+    // tests/fuzz/corpus through the fuzz target's entry, name and folder: the seeds are scenes
+    // (one of them refused), so that mutations start from inputs that reach the whole loader.
+    const std::string fuzz = FEN_FUZZ_DIR;
+    for (const char* name : {"data_uri.gltf", "external_bin.gltf", "binary.glb", "table_sky.gltf"}) {
+        const std::vector<unsigned char> b = readBytes(fuzz + "/corpus/" + name);
+        ASSERT_FALSE(b.empty()) << name;
+        const Scene s = loadGltfFromMemory(b.data(), b.size(), "fuzz.gltf", fuzz + "/files");
+        EXPECT_GE(s.triangles.size(), 1u) << name;
+    }
+    const std::vector<unsigned char> b = readBytes(fuzz + "/corpus/refused_uri.gltf");
+    try {
+        loadGltfFromMemory(b.data(), b.size(), "fuzz.gltf", fuzz + "/files");
+        ADD_FAILURE() << "refused_uri.gltf loaded";
+    } catch (const Error& e) {
+        EXPECT_TRUE(contains(e.what(), "fuzz.gltf: buffers[0].uri: '..%2Foutside.bin' leads outside")) << e.what();
+    }
+    // files/outside.bin is a link out of the folder.
+    const std::string e = [&] {
+        try {
+            SceneFolder(fuzz + "/files").resolve("outside.bin", "images[0].uri");
+        } catch (const Error& err) {
+            return std::string(err.what());
+        }
+        return std::string();
+    }();
+    EXPECT_TRUE(contains(e, "images[0].uri: 'outside.bin' leads outside the scene's folder (through a symbolic link)")) << e;
 }
 
 }  // namespace
