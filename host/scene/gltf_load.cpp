@@ -30,7 +30,7 @@ bool endsWith(const std::string& s, const std::string& suffix)
 std::string nodeLabel(const tinygltf::Model& m, int node)
 {
     const std::string& name = m.nodes[static_cast<std::size_t>(node)].name;
-    return name.empty() ? cat("node ", node) : cat("node ", node, " '", name, "'");
+    return name.empty() ? cat("node ", node) : cat("node ", node, " '", printable(name), "'");
 }
 
 bool isFiniteMatrix(const glm::dmat4& m)
@@ -198,7 +198,7 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
 std::string materialLabel(const tinygltf::Model& m, std::size_t i)
 {
     const std::string& name = m.materials[i].name;
-    return name.empty() ? cat("materials[", i, "]") : cat("materials[", i, "] '", name, "'");
+    return name.empty() ? cat("materials[", i, "]") : cat("materials[", i, "] '", printable(name), "'");
 }
 
 // `doc` is the file's JSON as written: the extensions are read from it (json_reader.h).
@@ -310,7 +310,7 @@ SkySpec readSky(const nlohmann::json& sky, const std::string& where)
             for (std::size_t j = 0; j < spec.table_cd_m2[i].size(); ++j)
                 checkLight(spec.table_cd_m2[i][j], cat(r.keyPath("luminance"), "[", i, "][", j, "]"));
     } else {
-        throw Error(cat(r.keyPath("type"), ": unknown sky type '", type,
+        throw Error(cat(r.keyPath("type"), ": unknown sky type '", printable(type),
                         "' (uniform, cie or table)"));
     }
     r.rejectUnknownKeys();
@@ -325,7 +325,7 @@ CameraSpec readCamera(const tinygltf::Model& m, int node, const glm::dmat4& xf, 
         throw Error(cat(where, ": camera ", n.camera, " does not exist"));
     const tinygltf::Camera& cam = m.cameras[static_cast<std::size_t>(n.camera)];
     if (cam.type != "perspective")
-        throw Error(cat(where, ": camera ", n.camera, " is '", cam.type,
+        throw Error(cat(where, ": camera ", n.camera, " is '", printable(cam.type),
                         "'; only perspective cameras are supported"));
     if (!(cam.perspective.yfov > 0.0 && cam.perspective.yfov < M_PI))
         throw Error(cat(where, ": camera ", n.camera, ": yfov ", cam.perspective.yfov,
@@ -574,7 +574,7 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
     for (const auto& ext : model.extensionsRequired)
         if (ext != "KHR_materials_transmission" && ext != "KHR_materials_ior" &&
             ext != "KHR_lights_punctual")
-            throw Error(cat(path, ": requires extension ", ext, ", which fenestra does not support"));
+            throw Error(cat(path, ": requires extension ", printable(ext), ", which fenestra does not support"));
 
     Scene scene;
     scene.source = path;
@@ -664,11 +664,11 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
             const tinygltf::Light& L = model.lights[static_cast<std::size_t>(li)];
             const std::string lwhere = cat(path, ": KHR_lights_punctual.lights[", li, "]");
             if (L.type != "directional")
-                throw Error(cat(lwhere, ": '", L.type, "' lights are not supported; the sun is the one "
+                throw Error(cat(lwhere, ": '", printable(L.type), "' lights are not supported; the sun is the one "
                                 "directional light"));
             if (scene.sun.present)
                 throw Error(cat(where, ": a second directional light; the sun is the only one "
-                                "(already on node '", scene.sun.nodeName, "')"));
+                                "(already on node '", printable(scene.sun.nodeName), "')"));
             if (!(L.intensity >= 0.0) || !std::isfinite(L.intensity))
                 throw Error(cat(lwhere, ".intensity: ", L.intensity, " must be >= 0 (lux)"));
             glm::dvec3 color(1.0);
@@ -727,7 +727,7 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
         const glm::dvec3 skySun(std::cos(h) * std::sin(A), std::sin(h), -std::cos(h) * std::cos(A));
         const double apart = std::acos(std::clamp(glm::dot(toSun, skySun), -1.0, 1.0)) * 180.0 / M_PI;
         if (apart > 1.0)
-            scene.warnings.push_back(cat(path, ": the sun (node '", scene.sun.nodeName, "', altitude ",
+            scene.warnings.push_back(cat(path, ": the sun (node '", printable(scene.sun.nodeName), "', altitude ",
                                          alt, " deg) is ", apart, " deg from the CIE sky's sun ",
                                          "(sun_altitude_deg / sun_azimuth_deg)"));
     }
@@ -748,8 +748,8 @@ const CameraSpec& findCamera(const Scene& scene, const std::string& name)
             return c;
     std::string names;
     for (const auto& c : scene.cameras)
-        names += (names.empty() ? "'" : ", '") + (c.nodeName.empty() ? c.cameraName : c.nodeName) + "'";
-    throw Error(cat(scene.source, ": no camera named '", name, "' (cameras: ", names, ")"));
+        names += (names.empty() ? "'" : ", '") + printable(c.nodeName.empty() ? c.cameraName : c.nodeName) + "'";
+    throw Error(cat(scene.source, ": no camera named '", printable(name), "' (cameras: ", printable(names, 2000), ")"));
 }
 
 }  // namespace fen

@@ -701,6 +701,62 @@ TEST(UntrustedScene, OrdinaryScenesHaveNoFarGeometryWarning)
     }
 }
 
+TEST(UntrustedScene, NamesWithControlCharactersStayOnOneLine)
+{
+    // Found by the fuzz target: a node named "p\ne" split the error naming it over two lines.
+    const std::string dir = test::tempDir("untrusted-names");
+    auto oneLine = [](const std::string& e) { return !e.empty() && e.find('\n') == std::string::npos; };
+    test::GltfWriter w = fullScene();
+    w.node(0)["name"] = "p\ne";
+    w.doc()["meshes"][0]["primitives"][0]["mode"] = 3;
+    std::string e = errorOf(w.write(dir + "/node.gltf"));
+    EXPECT_TRUE(oneLine(e) && contains(e, "node 0 'p\\x0ae'")) << e;
+    w = fullScene();
+    w.doc()["materials"][0]["name"] = "g\rl\nass";
+    w.doc()["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {2, 0, 0, 1};
+    e = errorOf(w.write(dir + "/material.gltf"));
+    EXPECT_TRUE(oneLine(e) && contains(e, "materials[0] 'g\\x0dl\\x0aass'")) << e;
+    w = fullScene();
+    w.doc()["extensions"]["KHR_lights_punctual"]["lights"][0]["type"] = "po\nint";
+    e = errorOf(w.write(dir + "/light.gltf"));
+    EXPECT_TRUE(oneLine(e)) << e;
+    w = fullScene();
+    w.doc()["cameras"][0]["type"] = "ortho\ngraphic";
+    e = errorOf(w.write(dir + "/camera.gltf"));
+    EXPECT_TRUE(oneLine(e)) << e;
+    w = fullScene();
+    w.doc()["extensionsRequired"] = {"EXT_\nfoo"};
+    e = errorOf(w.write(dir + "/ext.gltf"));
+    EXPECT_TRUE(oneLine(e)) << e;
+    w = fullScene();
+    w.doc()["scenes"][0]["extras"]["sky"]["type"] = "sun\nset";
+    e = errorOf(w.write(dir + "/sky.gltf"));
+    EXPECT_TRUE(oneLine(e)) << e;
+    w = fullScene();
+    w.doc()["nodes"][1]["name"] = "s\nun";
+    w.doc()["nodes"].push_back(w.doc()["nodes"][1]);
+    w.doc()["scenes"][0]["nodes"].push_back(3);
+    e = errorOf(w.write(dir + "/sun.gltf"));  // a second sun, naming the first
+    EXPECT_TRUE(oneLine(e) && contains(e, "'s\\x0aun'")) << e;
+    // Warnings too.
+    w = fullScene();
+    w.addMeshNode("far\naway", {{{1e6f, 0, 0}, {1e6f + 1, 0, 0}, {1e6f, 1, 0}}});
+    const Scene s = loadGltf(w.write(dir + "/far.gltf"));
+    ASSERT_FALSE(s.warnings.empty());
+    for (const auto& warning : s.warnings)
+        EXPECT_TRUE(oneLine(warning)) << warning;
+    // findCamera lists the camera names.
+    w = fullScene();
+    w.node(2)["name"] = "c\nam";
+    const Scene c = loadGltf(w.write(dir + "/cam.gltf"));
+    try {
+        findCamera(c, "nope");
+        ADD_FAILURE();
+    } catch (const Error& err) {
+        EXPECT_TRUE(oneLine(err.what())) << err.what();
+    }
+}
+
 // --- 8. The fuzz target's seeds ---------------------------------------------------------------
 
 std::vector<unsigned char> readBytes(const std::string& path)
