@@ -1,4 +1,7 @@
-// gltf_load.cpp — glTF 2.0 to Scene (gltf_load.h), via tinygltf.
+// gltf_load.cpp — glTF 2.0 to Scene (gltf_load.h), via tinygltf. The order is the point: framing,
+// nesting and the JSON are checked before tinygltf reads anything, tinygltf reads files only
+// through the scene folder's callbacks, and the members fenestra reads from tinygltf's model are
+// those gltf_check has made sure it copied faithfully; extras come from the JSON itself.
 #include "scene/gltf_load.h"
 
 #include <algorithm>

@@ -16,6 +16,11 @@
 // Every problem -- a missing or malformed file, a missing buffer, an accessor out of bounds, a
 // non-triangle primitive, a non-finite coordinate, an unknown or malformed extras key, a point
 // light -- is a fen::Error naming the file and the node / mesh / material / key at fault.
+// The file is untrusted (README, "Untrusted scenes"): its bytes are framed and bounded before a
+// parser sees them and its URIs stay in its folder (scene_files.h), its JSON is checked as
+// written (gltf_check.h), the node graph must be a forest and is walked without recursion, sizes
+// use checked arithmetic, and no message quotes another file's bytes or size. A node that blows
+// up the scene's bounds is named in Scene::warnings.
 #pragma once
 
 #include <cstddef>

@@ -87,7 +87,7 @@ TEST(UntrustedScene, AbsoluteAndFileUrisAreRefused)
     const std::string dir = test::tempDir("untrusted-abs");
     const std::string secret = secretFile(dir, 36);  // exactly the triangle's byteLength
     for (const std::string& uri : std::vector<std::string>{secret, "file://" + secret, "file:" + secret, "FILE://" + secret,
-                                  "http://example.com/tri.bin"}) {
+                                  "http://example.com/tri.bin", "tri.bin%00/../../secret.bin"}) {
         const std::string e = errorOf(sceneWithBufferUri(dir, uri));
         EXPECT_TRUE(contains(e, "s.gltf: buffers[0].uri")) << uri << ": " << e;
         EXPECT_TRUE(contains(e, "refused")) << uri << ": " << e;
