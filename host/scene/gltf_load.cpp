@@ -1,17 +1,22 @@
-// gltf_load.cpp — glTF 2.0 to Scene (gltf_load.h), via tinygltf.
+// gltf_load.cpp — glTF 2.0 to Scene (gltf_load.h), via tinygltf. The order is the point: framing,
+// nesting and the JSON are checked before tinygltf reads anything, tinygltf reads files only
+// through the scene folder's callbacks, and the members fenestra reads from tinygltf's model are
+// those gltf_check has made sure it copied faithfully; extras come from the JSON itself.
 #include "scene/gltf_load.h"
 
 #include <algorithm>
 #include <cstring>
-#include <fstream>
-#include <functional>
+#include <filesystem>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
+#include "scene/gltf_check.h"
 #include "scene/json_reader.h"
+#include "scene/scene_files.h"
 #include "util/error.h"
 
 namespace fen {
@@ -28,7 +33,16 @@ bool endsWith(const std::string& s, const std::string& suffix)
 std::string nodeLabel(const tinygltf::Model& m, int node)
 {
     const std::string& name = m.nodes[static_cast<std::size_t>(node)].name;
-    return name.empty() ? cat("node ", node) : cat("node ", node, " '", name, "'");
+    return name.empty() ? cat("node ", node) : cat("node ", node, " '", printable(name), "'");
+}
+
+bool isFiniteMatrix(const glm::dmat4& m)
+{
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r]))
+                return false;
+    return true;
 }
 
 glm::dmat4 localTransform(const tinygltf::Node& n)
@@ -70,14 +84,19 @@ public:
             throw Error(cat(where_, ": invalid component type, type or byteStride"));
         elemSize_ = static_cast<std::size_t>(comp * ncomp);
         stride_ = static_cast<std::size_t>(stride);
-        if (bv.byteOffset + bv.byteLength > buf.data.size())
-            throw Error(cat(where_, ": bufferView ", acc_->bufferView, " lies outside buffer ",
-                            bv.buffer, " (", buf.data.size(), " bytes",
-                            buf.data.empty() ? "; was its file found?" : "", ")"));
+        // Offsets, lengths and counts come from the file as 64-bit integers: a sum or product
+        // near 2^64 must not wrap into something that looks in bounds.
+        std::size_t viewEnd = 0, last = 0, end = 0;
+        if (__builtin_add_overflow(bv.byteOffset, bv.byteLength, &viewEnd) || viewEnd > buf.data.size())
+            throw Error(cat(where_, ": bufferView ", acc_->bufferView, " (byteOffset ", bv.byteOffset,
+                            ", byteLength ", bv.byteLength, ") lies outside buffer ", bv.buffer,
+                            buf.data.empty() ? " (was its file found?)" : ""));
         if (acc_->count > 0 &&
-            acc_->byteOffset + stride_ * (acc_->count - 1) + elemSize_ > bv.byteLength)
-            throw Error(cat(where_, ": ", acc_->count, " elements do not fit in bufferView ",
-                            acc_->bufferView));
+            (__builtin_mul_overflow(stride_, acc_->count - 1, &last) ||
+             __builtin_add_overflow(last, acc_->byteOffset, &end) ||
+             __builtin_add_overflow(end, elemSize_, &end) || end > bv.byteLength))
+            throw Error(cat(where_, ": ", acc_->count, " elements from byteOffset ", acc_->byteOffset,
+                            " do not fit in bufferView ", acc_->bufferView));
         base_ = buf.data.data() + bv.byteOffset + acc_->byteOffset;
     }
 
@@ -161,7 +180,8 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
         for (std::size_t i = 0; i < ia.count(); ++i) {
             idx[i] = ia.index(i);
             if (idx[i] >= world.size())
-                throw Error(cat(ia.where(), ": index ", idx[i], " at ", i, " exceeds the ",
+                // By position: the value is the buffer's content, which no message quotes.
+                throw Error(cat(ia.where(), ": index at position ", i, " exceeds the ",
                                 world.size(), " vertices"));
         }
     } else {
@@ -181,17 +201,12 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
 std::string materialLabel(const tinygltf::Model& m, std::size_t i)
 {
     const std::string& name = m.materials[i].name;
-    return name.empty() ? cat("materials[", i, "]") : cat("materials[", i, "] '", name, "'");
+    return name.empty() ? cat("materials[", i, "]") : cat("materials[", i, "] '", printable(name), "'");
 }
 
-// "file: materials[2] 'glass'" style context, with the extension's JSON as nlohmann::json.
-nlohmann::json extensionJson(const tinygltf::ExtensionMap& ext, const std::string& name)
-{
-    const auto it = ext.find(name);
-    return it == ext.end() ? nlohmann::json() : toJson(it->second);
-}
-
-std::vector<Material> readMaterials(const tinygltf::Model& m, const std::string& path, Scene& scene)
+// `doc` is the file's JSON as written: the extensions are read from it (json_reader.h).
+std::vector<Material> readMaterials(const tinygltf::Model& m, const nlohmann::json& doc,
+                                    const std::string& path, Scene& scene)
 {
     std::vector<Material> out;
     for (std::size_t i = 0; i < m.materials.size(); ++i) {
@@ -217,7 +232,8 @@ std::vector<Material> readMaterials(const tinygltf::Model& m, const std::string&
             src.emissiveTexture.index >= 0)
             scene.warnings.push_back(cat(where, ": emission ignored (light comes from the sun and sky only)"));
 
-        const nlohmann::json tr = extensionJson(src.extensions, "KHR_materials_transmission");
+        const nlohmann::json& extensions = member(element(member(doc, "materials"), i), "extensions");
+        const nlohmann::json& tr = member(extensions, "KHR_materials_transmission");
         if (!tr.is_null()) {
             JsonReader r(tr, where + ".extensions.KHR_materials_transmission");
             const double t = r.number("transmissionFactor", 0.0);
@@ -233,7 +249,7 @@ std::vector<Material> readMaterials(const tinygltf::Model& m, const std::string&
                 mat.transmission = static_cast<float>(t) * mat.albedo;
             }
         }
-        const nlohmann::json ior = extensionJson(src.extensions, "KHR_materials_ior");
+        const nlohmann::json& ior = member(extensions, "KHR_materials_ior");
         if (!ior.is_null()) {
             JsonReader r(ior, where + ".extensions.KHR_materials_ior");
             const double v = r.number("ior", 1.5);
@@ -273,9 +289,10 @@ SkySpec readSky(const nlohmann::json& sky, const std::string& where)
         checkLight(spec.luminance_cd_m2, r.keyPath("luminance"));
     } else if (type == "cie") {
         spec.type = SkySpec::Type::Cie;
-        spec.cieType = r.integer("cie_type");
-        if (spec.cieType < 1 || spec.cieType > 15)
-            throw Error(cat(r.keyPath("cie_type"), ": ", spec.cieType, " is not a CIE sky type (1..15)"));
+        const std::int64_t cieType = r.integer("cie_type");
+        if (cieType < 1 || cieType > 15)
+            throw Error(cat(r.keyPath("cie_type"), ": ", cieType, " is not a CIE sky type (1..15)"));
+        spec.cieType = static_cast<int>(cieType);
         spec.zenithLuminance_cd_m2 = r.number("zenith_luminance");
         if (spec.zenithLuminance_cd_m2 < 0.0)
             throw Error(cat(r.keyPath("zenith_luminance"), ": negative luminance ",
@@ -296,7 +313,7 @@ SkySpec readSky(const nlohmann::json& sky, const std::string& where)
             for (std::size_t j = 0; j < spec.table_cd_m2[i].size(); ++j)
                 checkLight(spec.table_cd_m2[i][j], cat(r.keyPath("luminance"), "[", i, "][", j, "]"));
     } else {
-        throw Error(cat(r.keyPath("type"), ": unknown sky type '", type,
+        throw Error(cat(r.keyPath("type"), ": unknown sky type '", printable(type),
                         "' (uniform, cie or table)"));
     }
     r.rejectUnknownKeys();
@@ -311,7 +328,7 @@ CameraSpec readCamera(const tinygltf::Model& m, int node, const glm::dmat4& xf, 
         throw Error(cat(where, ": camera ", n.camera, " does not exist"));
     const tinygltf::Camera& cam = m.cameras[static_cast<std::size_t>(n.camera)];
     if (cam.type != "perspective")
-        throw Error(cat(where, ": camera ", n.camera, " is '", cam.type,
+        throw Error(cat(where, ": camera ", n.camera, " is '", printable(cam.type),
                         "'; only perspective cameras are supported"));
     if (!(cam.perspective.yfov > 0.0 && cam.perspective.yfov < M_PI))
         throw Error(cat(where, ": camera ", n.camera, ": yfov ", cam.perspective.yfov,
@@ -320,6 +337,9 @@ CameraSpec readCamera(const tinygltf::Model& m, int node, const glm::dmat4& xf, 
     c.nodeName = n.name;
     c.cameraName = cam.name;
     c.position = glm::dvec3(xf[3]);
+    if (!isFinite(glm::vec3(c.position)))  // the renderer places it in floats
+        throw Error(cat(where, ": camera position (", c.position.x, ", ", c.position.y, ", ", c.position.z,
+                        ") is beyond float range"));
     const glm::dvec3 back = glm::dvec3(xf[2]), upRaw = glm::dvec3(xf[1]);
     if (glm::length(back) == 0.0 || glm::length(upRaw) == 0.0)
         throw Error(cat(where, ": camera transform is degenerate"));
@@ -334,15 +354,200 @@ CameraSpec readCamera(const tinygltf::Model& m, int node, const glm::dmat4& xf, 
     return c;
 }
 
+// "nodes[3] 'window'": the glTF path of a node, with its name when it has one.
+std::string nodeRef(const tinygltf::Model& m, int node)
+{
+    const std::string& name = m.nodes[static_cast<std::size_t>(node)].name;
+    return name.empty() ? cat("nodes[", node, "]") : cat("nodes[", node, "] '", printable(name), "'");
+}
+
+// glTF nodes form disjoint strict trees (glTF 2.0, "Nodes and Hierarchy"): a node has at most one
+// parent and is not its own ancestor. A node listed twice multiplies the work (30 levels of
+// doubling: 2^30 copies from a 6 KB file), a cycle never ends: both are refused, for every node,
+// in the file or not in the scene. Returns each node's parent, -1 for a root.
+std::vector<int> checkNodeForest(const tinygltf::Model& m, const std::string& path)
+{
+    const int count = static_cast<int>(m.nodes.size());
+    std::vector<int> parent(m.nodes.size(), -1);
+    for (int i = 0; i < count; ++i) {
+        const std::vector<int>& children = m.nodes[static_cast<std::size_t>(i)].children;
+        for (std::size_t k = 0; k < children.size(); ++k) {
+            const int c = children[k];
+            const std::string where = cat(path, ": nodes[", i, "].children[", k, "]");
+            if (c < 0 || c >= count)
+                throw Error(cat(where, ": node ", c, " does not exist"));
+            if (c == i)
+                throw Error(cat(where, ": ", nodeRef(m, c), " is its own child"));
+            int& p = parent[static_cast<std::size_t>(c)];
+            if (p == i)
+                throw Error(cat(where, ": ", nodeRef(m, c), " is listed twice"));
+            if (p >= 0)
+                throw Error(cat(path, ": ", nodeRef(m, c), " is a child of both nodes[", p, "] and nodes[",
+                                i, "]; glTF nodes form trees"));
+            p = i;
+        }
+    }
+    // With one parent each, a cycle is a chain of parents that comes back to where it started.
+    enum : char { Unknown, OnChain, ReachesRoot };
+    std::vector<char> state(m.nodes.size(), Unknown);
+    for (int i = 0; i < count; ++i) {
+        int n = i;
+        while (n >= 0 && state[static_cast<std::size_t>(n)] == Unknown) {
+            state[static_cast<std::size_t>(n)] = OnChain;
+            n = parent[static_cast<std::size_t>(n)];
+        }
+        if (n >= 0 && state[static_cast<std::size_t>(n)] == OnChain)
+            throw Error(cat(path, ": ", nodeRef(m, n), " is its own ancestor (its children lead back to it)"));
+        for (n = i; n >= 0 && state[static_cast<std::size_t>(n)] == OnChain; n = parent[static_cast<std::size_t>(n)])
+            state[static_cast<std::size_t>(n)] = ReachesRoot;
+    }
+    return parent;
+}
+
+// A scene lists root nodes, each once: otherwise a subtree would be drawn twice.
+void checkSceneRoots(const tinygltf::Model& m, int sceneIndex, const std::vector<int>& parent,
+                     const std::string& path)
+{
+    const std::vector<int>& roots = m.scenes[static_cast<std::size_t>(sceneIndex)].nodes;
+    std::vector<char> listed(m.nodes.size(), 0);
+    for (std::size_t k = 0; k < roots.size(); ++k) {
+        const int r = roots[k];
+        const std::string where = cat(path, ": scenes[", sceneIndex, "].nodes[", k, "]");
+        if (r < 0 || r >= static_cast<int>(m.nodes.size()))
+            throw Error(cat(where, ": node ", r, " does not exist"));
+        if (parent[static_cast<std::size_t>(r)] >= 0)
+            throw Error(cat(where, ": ", nodeRef(m, r), " is a child of nodes[", parent[static_cast<std::size_t>(r)],
+                            "]; a scene lists root nodes only"));
+        if (listed[static_cast<std::size_t>(r)]++)
+            throw Error(cat(where, ": ", nodeRef(m, r), " is listed twice"));
+    }
+}
+
+// A box in double: the bounds of a scene a thousand kilometres wide, and their differences.
+struct Box {
+    glm::dvec3 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
+    void grow(const glm::dvec3& p)
+    {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    void grow(const Box& b)
+    {
+        lo = glm::min(lo, b.lo);
+        hi = glm::max(hi, b.hi);
+    }
+    bool empty() const { return !(lo.x <= hi.x); }
+    double diameter() const { return empty() ? 0.0 : glm::length(hi - lo); }
+    double distanceTo(const glm::dvec3& p) const
+    {
+        return glm::length(glm::max(glm::max(lo - p, p - hi), glm::dvec3(0.0)));
+    }
+};
+
+// Uniform emission starts paths on a disk as wide as the scene's bounding sphere, so a node far
+// from the rest (one triangle a thousand kilometres away) or much larger than it (a ground plane
+// kilometres wide) leaves the part the camera sees a tiny share of the paths: the interior goes
+// dark and noisy. Warned about, naming the node, when
+//  (1) the bounding box of all geometry is more than kDominance times larger in diameter than
+//      the box of the geometry outside the node's subtree (a node is taken with its descendants,
+//      so that a far object built of several nodes is found by its root), and
+//  (2) that rest is what the scene is about: a camera is nearer to its box than to the node's
+//      (strictly: a camera inside both boxes decides nothing), or, in a scene without cameras,
+//      the rest is the larger part. Without (2) a room would be reported for the small lamp
+//      inside it: removing the room shrinks the box as much.
+// The topmost such node is named, once. Not found: far geometry split among several root nodes
+// that are far from the rest but near each other (no one of them alone shrinks the box).
+void warnAboutDominantGeometry(const std::vector<int>& order, const std::vector<int>& parent, Scene& scene)
+{
+    constexpr double kDominance = 10.0;
+    const std::size_t count = order.size();
+    if (count < 2)
+        return;
+    std::vector<std::size_t> pre(parent.size(), 0);
+    for (std::size_t k = 0; k < count; ++k)
+        pre[static_cast<std::size_t>(order[k])] = k;
+    std::vector<Box> own(count), subtree(count);
+    for (std::size_t t = 0; t < scene.triangles.size(); ++t)
+        for (const glm::vec3* p : {&scene.triangles[t].p0, &scene.triangles[t].p1, &scene.triangles[t].p2})
+            own[pre[scene.triangleNode[t]]].grow(glm::dvec3(*p));
+    // Pre-order puts a subtree in one run [k, end[k]) after its root: sizes from the back.
+    std::vector<std::size_t> end(count);
+    for (std::size_t k = count; k-- > 0;) {
+        subtree[k].grow(own[k]);
+        end[k] = std::max(end[k], k + 1);
+        const int p = parent[static_cast<std::size_t>(order[k])];
+        if (p >= 0) {
+            const std::size_t pk = pre[static_cast<std::size_t>(p)];
+            subtree[pk].grow(subtree[k]);
+            end[pk] = std::max(end[pk], end[k]);
+        }
+    }
+    std::vector<Box> before(count + 1), after(count + 1);  // boxes of order[0, k) and order[k, count)
+    for (std::size_t k = 0; k < count; ++k) {
+        before[k + 1] = before[k];
+        before[k + 1].grow(own[k]);
+    }
+    for (std::size_t k = count; k-- > 0;) {
+        after[k] = after[k + 1];
+        after[k].grow(own[k]);
+    }
+    const double all = before[count].diameter();
+    for (std::size_t k = 0; k < count;) {
+        Box rest = before[k];
+        rest.grow(after[end[k]]);
+        const double restDiameter = rest.diameter();
+        bool seen = false;
+        for (const CameraSpec& c : scene.cameras)
+            seen = seen || rest.distanceTo(c.position) < subtree[k].distanceTo(c.position);
+        const bool restMatters = scene.cameras.empty() ? subtree[k].diameter() < restDiameter : seen;
+        if (!rest.empty() && !subtree[k].empty() && all > kDominance * restDiameter && restMatters) {
+            const int node = order[k];
+            const std::string& name = scene.nodeNames[static_cast<std::size_t>(node)];
+            scene.warnings.push_back(cat(
+                scene.source, ": node ", node, name.empty() ? "" : cat(" '", printable(name), "'"),
+                " makes the scene's bounding box ", all / std::max(restDiameter, 1e-30), " times larger (",
+                all, " m across) than the rest of the geometry (", restDiameter,
+                " m): uniform emission spreads its paths over the whole box, and the rest may come out "
+                "dark and noisy (--method portal does not mind)"));
+            k = end[k];  // its descendants would say the same
+        } else {
+            ++k;
+        }
+    }
+}
+
 }  // namespace
 
 Scene loadGltf(const std::string& path)
 {
-    {
-        std::ifstream probe(path, std::ios::binary);
-        if (!probe)
-            throw Error(cat(path, ": cannot open file"));
+    const std::vector<unsigned char> bytes = readSceneFile(path);
+    const std::string folder = std::filesystem::path(path).parent_path().string();
+    return loadGltfFromMemory(bytes.data(), bytes.size(), path, folder);
+}
+
+Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std::string& path,
+                         const std::string& folder)
+{
+    if (size > kMaxSceneFileBytes)
+        throw Error(cat(path, ": larger than ", kMaxSceneFileBytes, " bytes, the most a scene file may hold"));
+    const bool binary = endsWith(path, ".glb") || (size >= 4 && std::memcmp(data, "glTF", 4) == 0);
+    // tinygltf trusts a GLB's chunk lengths (2.7 reads past the end when BIN's is 8 too long):
+    // it sees the bytes only once their framing is checked, and only the header's length of them.
+    std::size_t glbLength = 0;
+    const char* json = reinterpret_cast<const char*>(data);
+    std::size_t jsonSize = size;
+    if (binary) {
+        const GlbLayout glb = checkGlb(data, size, path);
+        glbLength = glb.length;
+        json += glb.jsonOffset;
+        jsonSize = glb.jsonSize;
     }
+    // Parsers recurse (tinygltf's extras, nlohmann's dump): bound the depth before any of them.
+    checkJsonNesting(json, jsonSize, path);
+    const nlohmann::json doc = parseGltfJson(json, jsonSize, path);
+    SceneFolder sceneFolder(folder);
+    checkGltfJson(doc, path, sceneFolder);
+
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
     // Textures are not used: do not decode images (and do not fail on a missing one).
@@ -350,9 +555,16 @@ Scene loadGltf(const std::string& path)
         [](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
            int, void*) { return true; },
         nullptr);
+    // Every external file tinygltf reads goes through the folder's rule (scene_files.h).
+    sceneFolder.install(loader);
     std::string err, warn;
-    const bool ok = endsWith(path, ".glb") ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                                           : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    const bool ok =
+        binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data,
+                                             static_cast<unsigned int>(glbLength), sceneFolder.path())
+               : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data),
+                                            static_cast<unsigned int>(size), sceneFolder.path());
+    if (!ok && !sceneFolder.refusal().empty())
+        throw Error(cat(path, ": ", sceneFolder.refusal()));
     if (!ok) {
         std::string msg = err.empty() ? warn : err;
         while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' '))
@@ -360,25 +572,21 @@ Scene loadGltf(const std::string& path)
         for (auto& c : msg)
             if (c == '\n')
                 c = ';';
-        throw Error(cat(path, ": not a valid glTF file: ", msg.empty() ? "unknown error" : msg));
+        throw Error(cat(path, ": not a valid glTF file: ", msg.empty() ? "unknown error" : printable(msg)));
     }
     for (const auto& ext : model.extensionsRequired)
         if (ext != "KHR_materials_transmission" && ext != "KHR_materials_ior" &&
             ext != "KHR_lights_punctual")
-            throw Error(cat(path, ": requires extension ", ext, ", which fenestra does not support"));
+            throw Error(cat(path, ": requires extension ", printable(ext), ", which fenestra does not support"));
 
     Scene scene;
     scene.source = path;
     scene.nodeNames.resize(model.nodes.size());
     scene.nodePortal.assign(model.nodes.size(), PortalMark::None);
-    scene.nodeParent.assign(model.nodes.size(), -1);
-    for (std::size_t i = 0; i < model.nodes.size(); ++i)
-        for (int c : model.nodes[i].children)
-            if (c >= 0 && c < static_cast<int>(model.nodes.size()))
-                scene.nodeParent[static_cast<std::size_t>(c)] = static_cast<int>(i);
+    scene.nodeParent = checkNodeForest(model, path);
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
         scene.nodeNames[i] = model.nodes[i].name;
-    scene.materials = readMaterials(model, path, scene);
+    scene.materials = readMaterials(model, doc, path, scene);
     if (model.scenes.empty())
         throw Error(cat(path, ": the file has no scene"));
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
@@ -386,7 +594,7 @@ Scene loadGltf(const std::string& path)
         throw Error(cat(path, ": default scene ", sceneIndex, " does not exist"));
     const tinygltf::Scene& gscene = model.scenes[static_cast<std::size_t>(sceneIndex)];
 
-    const nlohmann::json sceneExtras = toJson(gscene.extras);
+    const nlohmann::json& sceneExtras = member(element(member(doc, "scenes"), static_cast<std::size_t>(sceneIndex)), "extras");
     if (!sceneExtras.is_null()) {
         const std::string where = cat(path, ": scenes[", sceneIndex, "].extras");
         JsonReader r(sceneExtras, where);
@@ -395,16 +603,30 @@ Scene loadGltf(const std::string& path)
         r.rejectUnknownKeys();
     }
 
-    std::vector<char> onPath(model.nodes.size(), 0);
-    std::function<void(int, const glm::dmat4&)> visit = [&](int node, const glm::dmat4& parent) {
-        if (node < 0 || node >= static_cast<int>(model.nodes.size()))
-            throw Error(cat(path, ": reference to node ", node, ", which does not exist"));
-        if (onPath[static_cast<std::size_t>(node)])
-            throw Error(cat(path, ": ", nodeLabel(model, node), " is its own ancestor"));
-        onPath[static_cast<std::size_t>(node)] = 1;
+    // The node forest, walked in the order a recursive walk would take (cameras keep it) with an
+    // explicit stack: a legal hierarchy may be 10,000 deep. It is a forest (checkNodeForest), so
+    // every node is visited at most once.
+    checkSceneRoots(model, sceneIndex, scene.nodeParent, path);
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    std::vector<int> order;  // the nodes in the order visited
+    for (auto it = gscene.nodes.rbegin(); it != gscene.nodes.rend(); ++it)
+        stack.emplace_back(*it, glm::dmat4(1.0));
+    while (!stack.empty()) {
+        const int node = stack.back().first;
+        const glm::dmat4 parent = stack.back().second;
+        stack.pop_back();
+        order.push_back(node);
         const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(node)];
         const std::string where = cat(path, ": ", nodeLabel(model, node));
         const glm::dmat4 xf = parent * localTransform(n);
+        // Finite numbers whose product overflows: a camera at infinity renders a flat image, a sun
+        // along NaN nothing. (Vertices are checked one by one.)
+        const bool placesSomething =
+            n.camera >= 0 || !member(member(element(member(doc, "nodes"), static_cast<std::size_t>(node)),
+                                            "extensions"), "KHR_lights_punctual").is_null();
+        if (placesSomething && !isFiniteMatrix(xf))
+            throw Error(cat(where, ": its world transform is not finite (the transforms of it and its "
+                                   "parents overflow)"));
         if (n.mesh >= 0) {
             if (n.mesh >= static_cast<int>(model.meshes.size()))
                 throw Error(cat(where, " names mesh ", n.mesh, ", which does not exist"));
@@ -416,7 +638,8 @@ Scene loadGltf(const std::string& path)
         if (n.camera >= 0)
             scene.cameras.push_back(readCamera(model, node, xf, where));
 
-        const nlohmann::json extras = toJson(n.extras);
+        const nlohmann::json& rawNode = element(member(doc, "nodes"), static_cast<std::size_t>(node));
+        const nlohmann::json& extras = member(rawNode, "extras");
         if (!extras.is_null()) {
             JsonReader r(extras, where + ".extras");
             if (r.has("portal")) {
@@ -428,26 +651,27 @@ Scene loadGltf(const std::string& path)
                     scene.nodePortal[static_cast<std::size_t>(node)] = PortalMark::Hull;
                 else
                     throw Error(cat(r.keyPath("portal"), ": must be true, false or \"hull\", not ",
-                                    p.dump()));
+                                    describe(p)));
             }
             r.rejectUnknownKeys();
         }
 
-        const auto light = n.extensions.find("KHR_lights_punctual");
-        if (light != n.extensions.end()) {
-            JsonReader r(toJson(light->second), where + ".extensions.KHR_lights_punctual");
-            const int li = r.integer("light");
+        const nlohmann::json& light = member(member(rawNode, "extensions"), "KHR_lights_punctual");
+        if (!light.is_null()) {
+            JsonReader r(light, where + ".extensions.KHR_lights_punctual");
+            const std::int64_t li = r.integer("light");
             r.rejectUnknownKeys();
-            if (li < 0 || li >= static_cast<int>(model.lights.size()))
-                throw Error(cat(r.keyPath("light"), ": light ", li, " does not exist"));
+            if (li < 0 || li >= static_cast<std::int64_t>(model.lights.size()))
+                throw Error(cat(r.keyPath("light"), ": ", li, " is not an index of KHR_lights_punctual.lights (",
+                                model.lights.size(), " of them)"));
             const tinygltf::Light& L = model.lights[static_cast<std::size_t>(li)];
             const std::string lwhere = cat(path, ": KHR_lights_punctual.lights[", li, "]");
             if (L.type != "directional")
-                throw Error(cat(lwhere, ": '", L.type, "' lights are not supported; the sun is the one "
+                throw Error(cat(lwhere, ": '", printable(L.type), "' lights are not supported; the sun is the one "
                                 "directional light"));
             if (scene.sun.present)
                 throw Error(cat(where, ": a second directional light; the sun is the only one "
-                                "(already on node '", scene.sun.nodeName, "')"));
+                                "(already on node '", printable(scene.sun.nodeName), "')"));
             if (!(L.intensity >= 0.0) || !std::isfinite(L.intensity))
                 throw Error(cat(lwhere, ".intensity: ", L.intensity, " must be >= 0 (lux)"));
             glm::dvec3 color(1.0);
@@ -474,7 +698,10 @@ Scene loadGltf(const std::string& path)
             checkLight(std::max({scene.sun.illuminanceRgb_lux.r, scene.sun.illuminanceRgb_lux.g,
                                  scene.sun.illuminanceRgb_lux.b}),
                        lwhere + ".intensity * color");
-            const nlohmann::json lextras = toJson(L.extras);
+            const nlohmann::json& lextras =
+                member(element(member(member(member(doc, "extensions"), "KHR_lights_punctual"), "lights"),
+                               static_cast<std::size_t>(li)),
+                       "extras");
             if (!lextras.is_null()) {
                 JsonReader le(lextras, lwhere + ".extras");
                 const double deg = le.number("angular_radius_deg", 0.0);
@@ -485,18 +712,16 @@ Scene loadGltf(const std::string& path)
                 scene.sun.angularRadiusRad = deg * M_PI / 180.0;
             }
         }
-        for (int c : n.children)
-            visit(c, xf);
-        onPath[static_cast<std::size_t>(node)] = 0;
-    };
-    for (int root : gscene.nodes)
-        visit(root, glm::dmat4(1.0));
+        for (auto it = n.children.rbegin(); it != n.children.rend(); ++it)
+            stack.emplace_back(*it, xf);
+    }
 
     for (const auto& t : scene.triangles) {
         scene.bounds.grow(t.p0);
         scene.bounds.grow(t.p1);
         scene.bounds.grow(t.p2);
     }
+    warnAboutDominantGeometry(order, scene.nodeParent, scene);
     // A CIE sky is drawn for a sun position; a directional light elsewhere is likely a mistake.
     if (scene.sun.present && scene.sky.type == SkySpec::Type::Cie) {
         const glm::dvec3 toSun = -scene.sun.travelDirection;
@@ -505,7 +730,7 @@ Scene loadGltf(const std::string& path)
         const glm::dvec3 skySun(std::cos(h) * std::sin(A), std::sin(h), -std::cos(h) * std::cos(A));
         const double apart = std::acos(std::clamp(glm::dot(toSun, skySun), -1.0, 1.0)) * 180.0 / M_PI;
         if (apart > 1.0)
-            scene.warnings.push_back(cat(path, ": the sun (node '", scene.sun.nodeName, "', altitude ",
+            scene.warnings.push_back(cat(path, ": the sun (node '", printable(scene.sun.nodeName), "', altitude ",
                                          alt, " deg) is ", apart, " deg from the CIE sky's sun ",
                                          "(sun_altitude_deg / sun_azimuth_deg)"));
     }
@@ -526,8 +751,8 @@ const CameraSpec& findCamera(const Scene& scene, const std::string& name)
             return c;
     std::string names;
     for (const auto& c : scene.cameras)
-        names += (names.empty() ? "'" : ", '") + (c.nodeName.empty() ? c.cameraName : c.nodeName) + "'";
-    throw Error(cat(scene.source, ": no camera named '", name, "' (cameras: ", names, ")"));
+        names += (names.empty() ? "'" : ", '") + printable(c.nodeName.empty() ? c.cameraName : c.nodeName) + "'";
+    throw Error(cat(scene.source, ": no camera named '", printable(name), "' (cameras: ", printable(names, 2000), ")"));
 }
 
 }  // namespace fen

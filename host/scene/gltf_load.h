@@ -16,8 +16,14 @@
 // Every problem -- a missing or malformed file, a missing buffer, an accessor out of bounds, a
 // non-triangle primitive, a non-finite coordinate, an unknown or malformed extras key, a point
 // light -- is a fen::Error naming the file and the node / mesh / material / key at fault.
+// The file is untrusted (README, "Untrusted scenes"): its bytes are framed and bounded before a
+// parser sees them and its URIs stay in its folder (scene_files.h), its JSON is checked as
+// written (gltf_check.h), the node graph must be a forest and is walked without recursion, sizes
+// use checked arithmetic, and no message quotes another file's bytes or size. A node that blows
+// up the scene's bounds is named in Scene::warnings.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "scene/scene.h"
@@ -25,6 +31,12 @@
 namespace fen {
 
 Scene loadGltf(const std::string& path);
+
+// The same from a file's bytes in memory (also the fuzz target's entry): `path` only names the
+// file in messages, and external files are read from `folder` only. The bytes are binary glTF when
+// `path` ends in .glb or they start with the GLB magic, else JSON.
+Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std::string& path,
+                         const std::string& folder);
 
 // The camera named `name` (node name first, then the camera's own name); the first camera when
 // `name` is empty. Throws fen::Error listing the cameras there are.

@@ -3,36 +3,34 @@
 
 #include <algorithm>
 #include <cmath>
-
-#include <tiny_gltf.h>
+#include <limits>
 
 #include "util/error.h"
 
 namespace fen {
 
-nlohmann::json toJson(const tinygltf::Value& v)
+const nlohmann::json& member(const nlohmann::json& obj, const std::string& key)
 {
-    if (v.IsBool())
-        return v.Get<bool>();
-    if (v.IsInt())
-        return v.Get<int>();
-    if (v.IsReal())
-        return v.Get<double>();
-    if (v.IsString())
-        return v.Get<std::string>();
-    if (v.IsArray()) {
-        nlohmann::json a = nlohmann::json::array();
-        for (std::size_t i = 0; i < v.ArrayLen(); ++i)
-            a.push_back(toJson(v.Get(static_cast<int>(i))));
-        return a;
-    }
-    if (v.IsObject()) {
-        nlohmann::json o = nlohmann::json::object();
-        for (const auto& k : v.Keys())
-            o[k] = toJson(v.Get(k));
-        return o;
-    }
-    return nullptr;
+    static const nlohmann::json null;
+    if (!obj.is_object())
+        return null;
+    const auto it = obj.find(key);
+    return it == obj.end() ? null : *it;
+}
+
+const nlohmann::json& element(const nlohmann::json& array, std::size_t i)
+{
+    static const nlohmann::json null;
+    return array.is_array() && i < array.size() ? array[i] : null;
+}
+
+std::string describe(const nlohmann::json& v)
+{
+    if (v.is_array())
+        return cat("an array of ", v.size());
+    if (v.is_object())
+        return cat("an object of ", v.size(), " keys");
+    return printable(v.dump(), 60);
 }
 
 JsonReader::JsonReader(nlohmann::json object, std::string path)
@@ -58,7 +56,7 @@ double JsonReader::number(const std::string& key) const
 {
     const auto& v = get(key);
     if (!v.is_number())
-        throw Error(cat(keyPath(key), ": must be a number, not ", v.dump()));
+        throw Error(cat(keyPath(key), ": must be a number, not ", describe(v)));
     const double d = v.get<double>();
     if (!std::isfinite(d))
         throw Error(cat(keyPath(key), ": must be finite"));
@@ -70,19 +68,25 @@ double JsonReader::number(const std::string& key, double fallback) const
     return has(key) ? number(key) : fallback;
 }
 
-int JsonReader::integer(const std::string& key) const
+std::int64_t JsonReader::integer(const std::string& key) const
 {
-    const double d = number(key);
-    if (d != std::floor(d) || std::fabs(d) > 1e9)
-        throw Error(cat(keyPath(key), ": must be an integer, not ", object_.at(key).dump()));
-    return static_cast<int>(d);
+    const auto& v = get(key);
+    if (v.is_number_unsigned() && v.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<std::int64_t>::max()))
+        return static_cast<std::int64_t>(v.get<std::uint64_t>());
+    if (v.is_number_integer() && !v.is_number_unsigned())
+        return v.get<std::int64_t>();
+    // 12.0 is 12; beyond 2^53 a double no longer says which integer it is.
+    if (v.is_number_float() && v.get<double>() == std::floor(v.get<double>()) &&
+        std::fabs(v.get<double>()) <= 9007199254740992.0)
+        return static_cast<std::int64_t>(v.get<double>());
+    throw Error(cat(keyPath(key), ": must be an integer, not ", describe(v)));
 }
 
 std::string JsonReader::string(const std::string& key) const
 {
     const auto& v = get(key);
     if (!v.is_string())
-        throw Error(cat(keyPath(key), ": must be a string, not ", v.dump()));
+        throw Error(cat(keyPath(key), ": must be a string, not ", describe(v)));
     return v.get<std::string>();
 }
 
@@ -94,7 +98,7 @@ std::vector<double> JsonReader::numbers(const std::string& key) const
     std::vector<double> out;
     for (std::size_t i = 0; i < v.size(); ++i) {
         if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-            throw Error(cat(keyPath(key), "[", i, "]: must be a finite number, not ", v[i].dump()));
+            throw Error(cat(keyPath(key), "[", i, "]: must be a finite number, not ", describe(v[i])));
         out.push_back(v[i].get<double>());
     }
     return out;
@@ -113,7 +117,7 @@ std::vector<std::vector<double>> JsonReader::numberRows(const std::string& key) 
         for (std::size_t j = 0; j < v[i].size(); ++j) {
             const auto& x = v[i][j];
             if (!x.is_number() || !std::isfinite(x.get<double>()))
-                throw Error(cat(keyPath(key), "[", i, "][", j, "]: must be a finite number, not ", x.dump()));
+                throw Error(cat(keyPath(key), "[", i, "][", j, "]: must be a finite number, not ", describe(x)));
             row.push_back(x.get<double>());
         }
         out.push_back(std::move(row));
@@ -125,7 +129,7 @@ void JsonReader::rejectUnknownKeys() const
 {
     for (auto it = object_.begin(); it != object_.end(); ++it)
         if (std::find(used_.begin(), used_.end(), it.key()) == used_.end())
-            throw Error(cat(keyPath(it.key()), ": unknown key"));
+            throw Error(cat(keyPath(printable(it.key(), 60)), ": unknown key"));
 }
 
 }  // namespace fen

@@ -1,20 +1,26 @@
 // json_reader.h — strict reading of the JSON objects fenestra defines inside glTF `extras`
 // (DESIGN.md §6): every key must be known, every value of the right type, and every error names
 // the file and the key's path ("room.gltf: scenes[0].extras.sky.luminance: must be >= 0").
+// The objects come from the file's JSON as written (not tinygltf's copy of extras, which drops
+// empty objects and arrays and squeezes integers into 32 bits).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-namespace tinygltf {
-class Value;
-}
-
 namespace fen {
 
-nlohmann::json toJson(const tinygltf::Value& v);
+// obj[key] when obj is an object holding key, else null: lookups into a document that may have
+// any shape.
+const nlohmann::json& member(const nlohmann::json& obj, const std::string& key);
+// array[i] when it exists, else null.
+const nlohmann::json& element(const nlohmann::json& array, std::size_t i);
+// A JSON value for a one-line message: scalars as written (strings made printable), arrays and
+// objects by kind and size (they may be large).
+std::string describe(const nlohmann::json& v);
 
 class JsonReader {
 public:
@@ -24,7 +30,9 @@ public:
     bool has(const std::string& key) const;
     double number(const std::string& key) const;                 // required
     double number(const std::string& key, double fallback) const;  // optional
-    int integer(const std::string& key) const;                   // required, integral value
+    // Required, integral; read wide (a 64-bit value is not squeezed into 32 bits), the caller
+    // checks its range.
+    std::int64_t integer(const std::string& key) const;
     std::string string(const std::string& key) const;            // required
     std::vector<double> numbers(const std::string& key) const;   // required array of numbers
     std::vector<std::vector<double>> numberRows(const std::string& key) const;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
@@ -244,6 +245,98 @@ TEST(CliRender, BadInputIsOneLineNamingTheProblem)
     expectError(run("render " + good + out + " --portals plate"), 1, "--method portal");
     expectError(run("render " + good + out + " --method portal --portal-overlap maybe"), 1, "--portal-overlap");
     expectError(run("render " + good + " --out /proc/no/such/o.exr --paths 10 --no-progress"), 1, "/proc/no/such");
+}
+
+// Scenes from other people (README, "Untrusted scenes"): one line naming the file and the glTF
+// path, exit status 1, never a crash, never a byte or the size of another file.
+std::string untrustedOut(const std::string& dir) { return " --out " + dir + "/o.exr --paths 1000 --no-progress"; }
+
+TEST(CliUntrusted, BufferUriOutsideTheSceneFolder)
+{
+    const std::string dir = test::tempDir("cli-untrusted-uri");
+    std::ofstream(dir + "/secret.txt") << std::string(1221, 's');
+    std::filesystem::create_directories(dir + "/scene");
+    test::GltfWriter w = plateScene();
+    w.writeExternal(dir + "/scene/s.gltf", "plate.bin", "..%2Fsecret.txt");
+    const CliRun r = run("render " + dir + "/scene/s.gltf" + untrustedOut(dir));
+    expectError(r, 1, "s.gltf: buffers[0].uri: '..%2Fsecret.txt' leads outside the scene's folder");
+    EXPECT_EQ(r.err.find("1221"), std::string::npos) << r.err;
+}
+
+TEST(CliUntrusted, OffsetNear2To64)
+{
+    const std::string dir = test::tempDir("cli-untrusted-wrap");
+    test::GltfWriter w = plateScene();
+    w.doc()["bufferViews"][0]["byteOffset"] = ~std::uint64_t(0) - 7;  // + byteLength wraps past 2^64
+    expectError(run("render " + w.write(dir + "/wrap.gltf") + untrustedOut(dir)), 1,
+                "wrap.gltf: node 0 'plate', mesh 0, primitive 0, accessor 0: bufferView 0");
+}
+
+TEST(CliUntrusted, DeepNestingAndDagsAreOneLineErrors)
+{
+    const std::string dir = test::tempDir("cli-untrusted-deep");
+    test::GltfWriter w = plateScene();
+    w.node(0)["extras"] = "PLACEHOLDER";
+    const std::string path = w.write(dir + "/deep.gltf");
+    std::string text = slurp(path), deep;
+    for (int i = 0; i < 20000; ++i)
+        deep += "{\"a\":";
+    deep += "1" + std::string(20000, '}');
+    text.replace(text.find("\"PLACEHOLDER\""), 13, deep);
+    std::ofstream(path) << text;
+    expectError(run("render " + path + untrustedOut(dir)), 1, "deep.gltf: JSON nested deeper than 64 levels");
+
+    test::GltfWriter d = plateScene();
+    int top = 0;  // each level lists the one below twice: 2^30 plates from a 6 KB file
+    for (int i = 0; i < 30; ++i) {
+        d.doc()["nodes"].push_back({{"children", {top, top}}});
+        top = static_cast<int>(d.doc()["nodes"].size()) - 1;
+    }
+    d.doc()["scenes"][0]["nodes"] = {1, top};
+    expectError(run("render " + d.write(dir + "/dag.gltf") + untrustedOut(dir)), 1,
+                "dag.gltf: nodes[2].children[1]: nodes[0] 'plate' is listed twice");
+}
+
+TEST(CliUntrusted, WideIntegersAreNotSqueezedInto32Bits)
+{
+    const std::string dir = test::tempDir("cli-untrusted-wide");
+    const std::uint64_t k2To32 = std::uint64_t(1) << 32;
+    test::GltfWriter w = plateScene();
+    w.doc()["scenes"][0]["extras"]["sky"] = {{"type", "cie"}, {"cie_type", k2To32 + 12}, {"zenith_luminance", 1},
+                                             {"sun_altitude_deg", 45}, {"sun_azimuth_deg", 0}};
+    expectError(run("render " + w.write(dir + "/cie.gltf") + untrustedOut(dir)), 1,
+                "cie.gltf: scenes[0].extras.sky.cie_type: 4294967308 is not a CIE sky type");
+    test::GltfWriter m = plateScene();
+    m.node(0)["mesh"] = k2To32;
+    expectError(run("render " + m.write(dir + "/mesh.gltf") + untrustedOut(dir)), 1,
+                "mesh.gltf: nodes[0].mesh: 4294967296 is not an index of meshes (1 of them)");
+}
+
+TEST(CliUntrusted, WrongShapesAreErrors)
+{
+    const std::string dir = test::tempDir("cli-untrusted-shape");
+    test::GltfWriter t = plateScene();
+    t.node(1)["translation"] = {0, 3};  // was ignored: the camera sat at the origin
+    expectError(run("render " + t.write(dir + "/t.gltf") + untrustedOut(dir)), 1,
+                "t.gltf: nodes[1].translation: must be an array of 3 numbers");
+    test::GltfWriter c = plateScene();
+    c.doc()["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.2, 0.2}}}}}};
+    c.doc()["meshes"][0]["primitives"][0]["material"] = 0;  // was white
+    expectError(run("render " + c.write(dir + "/c.gltf") + untrustedOut(dir)), 1,
+                "c.gltf: materials[0].pbrMetallicRoughness.baseColorFactor: must be an array of 4 numbers");
+}
+
+TEST(CliUntrusted, FarGeometryIsAWarning)
+{
+    // A triangle a thousand kilometres away: the render goes on, with a word about it.
+    const std::string dir = test::tempDir("cli-untrusted-far");
+    test::GltfWriter w = plateScene();
+    w.addMeshNode("speck", {{{1e6f, 0, 0}, {1e6f + 1, 0, 0}, {1e6f, 1, 0}}});
+    const CliRun r = run("render " + w.write(dir + "/far.gltf") + " --out " + dir +
+                         "/o.exr --paths 20000 --width 32 --no-progress");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("fenestra: warning: " + dir + "/far.gltf: node 2 'speck' makes the scene's bounding box"),
+              std::string::npos) << r.err;
 }
 
 }  // namespace

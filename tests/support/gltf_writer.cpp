@@ -124,6 +124,58 @@ std::string GltfWriter::write(const std::string& path)
     return path;
 }
 
+std::string GltfWriter::writeExternal(const std::string& path, const std::string& binName,
+                                      const std::string& uri)
+{
+    namespace fs = std::filesystem;
+    const fs::path bin = fs::path(path).parent_path() / binName;
+    fs::create_directories(bin.parent_path());
+    std::ofstream(bin, std::ios::binary).write(reinterpret_cast<const char*>(bin_.data()),
+                                               static_cast<std::streamsize>(bin_.size()));
+    doc_["buffers"] = nlohmann::json::array(
+        {{{"byteLength", bin_.size()}, {"uri", uri.empty() ? binName : uri}}});
+    std::ofstream(path) << doc_.dump(1);
+    return path;
+}
+
+std::vector<unsigned char> GltfWriter::glbBytes()
+{
+    doc_["buffers"] = nlohmann::json::array({{{"byteLength", bin_.size()}}});
+    std::string json = doc_.dump();
+    while (json.size() % 4)
+        json += ' ';
+    std::vector<unsigned char> bin = bin_;
+    while (bin.size() % 4)
+        bin.push_back(0);
+    std::vector<unsigned char> out;
+    auto u32 = [&out](std::uint32_t v) {
+        for (int i = 0; i < 4; ++i)
+            out.push_back(static_cast<unsigned char>(v >> (8 * i)));
+    };
+    const std::size_t total = 12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size());
+    for (char c : std::string("glTF"))
+        out.push_back(static_cast<unsigned char>(c));
+    u32(2);
+    u32(static_cast<std::uint32_t>(total));
+    u32(static_cast<std::uint32_t>(json.size()));
+    u32(0x4E4F534Au);  // "JSON"
+    out.insert(out.end(), json.begin(), json.end());
+    if (!bin.empty()) {
+        u32(static_cast<std::uint32_t>(bin.size()));
+        u32(0x004E4942u);  // "BIN\0"
+        out.insert(out.end(), bin.begin(), bin.end());
+    }
+    return out;
+}
+
+std::string GltfWriter::writeGlb(const std::string& path)
+{
+    const std::vector<unsigned char> bytes = glbBytes();
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                static_cast<std::streamsize>(bytes.size()));
+    return path;
+}
+
 std::string tempDir(const std::string& tag)
 {
     namespace fs = std::filesystem;
