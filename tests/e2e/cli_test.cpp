@@ -243,8 +243,58 @@ TEST(CliRender, BadInputIsOneLineNamingTheProblem)
     expectError(run("render " + good + out + " --method portal"), 1, "no portals");
     expectError(run("render " + good + out + " --method portal --portals nope"), 1, "'nope'");
     expectError(run("render " + good + out + " --portals plate"), 1, "--method portal");
+    expectError(run("render " + good + out + " --method uniform --portals plate"), 1, "--base portal");
     expectError(run("render " + good + out + " --method portal --portal-overlap maybe"), 1, "--portal-overlap");
     expectError(run("render " + good + " --out /proc/no/such/o.exr --paths 10 --no-progress"), 1, "/proc/no/such");
+}
+
+TEST(CliRender, AdaptiveReportsItsGrid)
+{
+    const std::string dir = test::tempDir("cli-render-adaptive");
+    for (const char* base : {"uniform", "portal"}) {
+        const std::string out = dir + "/a_" + base + ".exr";
+        const CliRun r = run("render " + std::string(FEN_SCENES_DIR) + "/inner_room.gltf --out " + out +
+                             " --method adaptive --base " + base + " --paths 300000 --width 64 --no-progress");
+        ASSERT_EQ(r.status, 0) << r.err;
+        const auto j = nlohmann::json::parse(slurp(dir + "/a_" + base + ".json"));
+        EXPECT_EQ(j["method"], "adaptive");
+        const auto& e = j["emission"];
+        EXPECT_EQ(e["base"], base);
+        for (const char* k : {"cells", "max_cells", "memory_bytes", "passes", "deepest", "deepest_sky", "defensive",
+                              "estimate", "batch_weights", "checksum", "probability", "learn_seconds"})
+            EXPECT_TRUE(e.contains(k)) << k;
+        EXPECT_GT(e["memory_bytes"].get<std::uint64_t>(), 0u);
+        EXPECT_EQ(e["batch_weights"].size(), j["batches"].get<std::size_t>());
+        EXPECT_EQ(j["counters"]["stats_overflows"], 0);
+        if (std::string(base) == "portal")
+            EXPECT_EQ(e["portal_nodes"], nlohmann::json({"window", "door_frame"}));
+    }
+}
+
+TEST(CliRender, AdaptiveBadOptionsAreOneLine)
+{
+    const std::string dir = test::tempDir("cli-render-adaptive-bad");
+    const std::string good = plateScene().write(dir + "/good.gltf");
+    const std::string out = " --out " + dir + "/o.exr --paths 1000 --no-progress";
+    expectError(run("render " + good + out + " --method adaptive --base portal"), 1, "no portals");
+    expectError(run("render " + good + out + " --method adaptive --base sideways"), 1, "--method 'sideways'");
+    expectError(run("render " + good + out + " --method adaptive --base adaptive"), 1, "--base");
+    expectError(run("render " + good + out + " --base portal"), 1, "--base applies to --method adaptive");
+    expectError(run("render " + good + out + " --adaptive-max-depth 4"), 1, "--method adaptive");
+    expectError(run("render " + good + out + " --method adaptive --adaptive-max-depth 17"), 1, "--adaptive-max-depth 17");
+    expectError(run("render " + good + out + " --method adaptive --adaptive-initial-depth 5 --adaptive-max-depth 3"), 1,
+                "--adaptive-initial-depth 5");
+    expectError(run("render " + good + out + " --method adaptive --adaptive-max-sky-depth 13"), 1,
+                "--adaptive-max-sky-depth");
+    expectError(run("render " + good + out + " --method adaptive --adaptive-defensive 0"), 1, "--adaptive-defensive");
+    expectError(run("render " + good + out + " --method adaptive --adaptive-defensive 1.5"), 1, "--adaptive-defensive");
+    expectError(run("render " + good + out + " --method adaptive --base portal --portals plate --adaptive-disk-share 1"),
+                1, "--adaptive-disk-share");
+    expectError(run("render " + good + out + " --method adaptive --adaptive-first-pass 10"), 1, "--adaptive-first-pass");
+    expectError(run("render " + good + out + " --method adaptive --adaptive-split 0"), 1, "--adaptive-split");
+    expectError(run("render " + good + out + " --method adaptive --adaptive-estimate median"), 1,
+                "--adaptive-estimate");
+    expectError(run("render " + good + out + " --method adaptive --adaptive-max-cells 8"), 1, "--adaptive-max-cells 8");
 }
 
 // Scenes from other people (README, "Untrusted scenes"): one line naming the file and the glTF
