@@ -125,6 +125,13 @@ void AdaptiveGrid::computeLearned()
         learned_[i] = estimate(cells_[i]);
         total += learned_[i];
     }
+    // Statistics out of range (an overflowed sum) must not take the grid with them: the base
+    // density is what is known for sure, and the defensive share needs finite numbers to hold.
+    if (!(total > 0.0) || !std::isfinite(total)) {
+        total = 0.0;
+        for (std::size_t i = 0; i < cells_.size(); ++i)
+            total += learned_[i] = cells_[i].base;
+    }
     for (double& v : learned_)
         v /= total;
 }

@@ -27,9 +27,11 @@
 // A cell's second moment is the mean of its parts', so a cell whose light is uneven (an opening's
 // edge) is not judged by a pooled figure that its dim parts dilute.
 // What the paper leaves open, decided here:
-//   - prior: each cell starts with k = 1 pseudo-path carrying the base-weighted mean of the
-//     visited cells: an unvisited cell gets the share of an average cell, and one whose n paths
-//     carried nothing decays like 1 / sqrt(n) -- never to 0;
+//   - prior: each cell starts with k = 32 pseudo-paths (2 per part) carrying the base-weighted mean
+//     of the visited cells: an unvisited cell gets the share of an average cell, and one whose n
+//     paths carried nothing decays like sqrt(k / n) -- never to 0. (k = 1 let a cell that had
+//     not yet seen its rare light fall so low that the light, when it came, came as fireflies:
+//     docs/results/adaptive.md);
 //   - defensive share: P = (1 - alpha) P_learned + alpha P_base, so every cell where the base
 //     density has light keeps at least alpha of its base probability (no cell can die);
 //   - resolution: a cell is split in four -- along its origin box or along its direction box,

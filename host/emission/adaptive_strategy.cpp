@@ -149,7 +149,7 @@ public:
     void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
     {
         ocl::setKernelArgsFrom(emit, first, params_, cellAlias_, cellBuf_, sky_.theta, sky_.phi, sky_.values,
-                               stats_, frames_, portalBvh_->nodes(), portalBvh_->packets());
+                               frames_, portalBvh_->nodes(), portalBvh_->packets());
     }
     bool learns() const override { return true; }
     double batchWeight() override
@@ -389,7 +389,9 @@ private:
             const double toBase = realised_[cell] / cells[cell].base;
             parts[i].sum = word128(FEN_CELL_SUM_LO) / fixedScale_ * toBase;
             parts[i].sumSq = word128(FEN_CELL_SUMSQ_LO) / statsScale_ * toBase * toBase;
-            parts[i].paths = static_cast<double>(w[FEN_CELL_PATHS]);
+            // Paths are not counted on the device: the expectation, exact in the mean
+            // (shared/fen_emission.h).
+            parts[i].paths = static_cast<double>(passPaths_) * realised_[cell] / FEN_CELL_PARTS;
             parts[i].connections = static_cast<double>(w[FEN_CELL_CONNECTIONS]);
         }
         grid_->addPass(parts);

@@ -3,20 +3,22 @@
 // (adaptive_grid.h), over a base strategy that needs no marking (`uniform`) or over the marked
 // portals (`portal`) with a share of the disk that keeps it unbiased when the marking is wrong.
 //
-// The cells (device half: kernels/lib/emit_adaptive.h):
-//   - directions: a bin is the sun, or a rectangle of sky -- thetaBins bands of equal solid angle
-//     times phiBins azimuth steps. The sky table is refined so that every bin edge is a node (the
-//     same bilinear function: a bilinear patch restricted to a sub-rectangle is bilinear), and a
-//     path picks one of its bin's sky cells in proportion to the cell's flux (q(k | bin), exact
-//     integers), then a direction in the cell as `uniform` does;
-//   - origins: the emission disk of `uniform` through the concentric map, and with a portal base
-//     the frame (bounding rectangle in its plane) of every plane of portal triangles.
-// The base density P_base(cell): over `uniform`, the bin's flux through the disk times the box's
-// area; over `portal`, (1 - diskShare) times the flux through each plane's triangles (per bin, its
-// flux vector F_b . n, plus 5 % of the bin's flux so that no plane is written off before it is
-// measured) times the box, plus diskShare times the `uniform` density.
+// The cells (adaptive_grid.h; device half: kernels/lib/emit_adaptive.h): a box of directions -- the
+// sun's cone, or a box of (s, t) = (1 - cos(theta), phi / 2 pi) over the sky, where equal areas
+// are equal solid angles and a direction is drawn uniformly, its radiance g(v) evaluated -- times
+// a box of the origin's 2D parametrisation: the emission disk of `uniform` through the concentric
+// map, and with a portal base the frame of every plane of portal triangles (portal_planes.h). The
+// grid starts with 4^initialSkyDepth sky boxes and the sun, each with 4^initialDepth origin boxes
+// per region, and refines where the light is.
+// The base density P_base(cell): over `uniform`, the direction box's flux (the sky's integral over
+// it, the sun's illuminance) times the origin box's area -- `uniform`'s density at the resolution of
+// the boxes; over `portal`, (1 - diskShare) times the flux through each plane's triangles (|v.n|,
+// plus 5 % so that no plane is written off before anything is measured) plus diskShare times the
+// `uniform` density. The fluxes come from a midpoint rule: they shape the base and the priors only;
+// paths' weights use the exact density.
 // Passes: the first has firstPass paths, each next one twice as many, and every batch ends one;
-// after each, the statistics come back and the grid learns (adaptive_grid.h).
+// after each, the statistics come back and the grid learns; each batch weighs in the image by its
+// precision as predicted before it ran (render/film.h).
 #pragma once
 
 #include <memory>

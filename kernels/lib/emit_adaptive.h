@@ -9,7 +9,7 @@
  * or in the sun's cone, 16 + 16 bits the origin in its box. Which sixteenth of the cell the path
  * fell in (its origin quarter and its direction quarter) rides along in beta.w, and connect.cl
  * adds the luminance of every contribution that reaches the camera (and its square) to that
- * part's statistics; the path is counted here.
+ * part's statistics (paths are not counted: the host knows how many each part should get).
  *   - Disk cells (base `uniform`): the origin box is a piece of the unit square that the
  *     concentric map sends to the disk of radius R orthogonal to v (travel_basis, continuous in v).
  *     Density per area orthogonal to v: P(cell) / (pi R^2 |box|). Over a `portal` base, a disk path
@@ -28,8 +28,6 @@
 #ifndef FEN_EMIT_ADAPTIVE_H
 #define FEN_EMIT_ADAPTIVE_H
 
-#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
-
 #include "lib/bvh_traverse.h"
 #include "lib/emit_source.h"
 
@@ -38,7 +36,6 @@ typedef struct {
     const global uint* cell_alias;
     const global AdaptiveCell* cells;
     Sky sky;                       /* the scene's sky, evaluated (not sampled) */
-    volatile global ulong* cell_stats;
     const global PortalFrame* frames;
     const global BvhNode* portal_nodes;
     const global TriPacket4* portal_packets;
@@ -50,17 +47,16 @@ typedef struct {
     global const AdaptiveParams *adaptive_params, global const uint *cell_alias,                 \
         global const AdaptiveCell *cells, global const float *sky_theta,                         \
         global const float *sky_phi, global const float *sky_values,                             \
-        volatile global ulong *cell_stats, global const PortalFrame *frames,                     \
+        global const PortalFrame *frames,                                                        \
         global const BvhNode *portal_nodes, global const TriPacket4 *portal_packets
 #define FEN_ADAPTIVE_EMITTER                                                                     \
     adaptive_emitter(params, adaptive_params, cell_alias, cells, sky_theta, sky_phi, sky_values, \
-                     cell_stats, frames, portal_nodes, portal_packets)
+                     frames, portal_nodes, portal_packets)
 
 static inline AdaptiveEmitter adaptive_emitter(
     const global RenderParams* params, const global AdaptiveParams* adaptive_params,
     const global uint* cell_alias, const global AdaptiveCell* cells, const global float* sky_theta,
-    const global float* sky_phi, const global float* sky_values, volatile global ulong* cell_stats,
-    const global PortalFrame* frames, const global BvhNode* portal_nodes,
+    const global float* sky_phi, const global float* sky_values, const global PortalFrame* frames, const global BvhNode* portal_nodes,
     const global TriPacket4* portal_packets)
 {
     AdaptiveEmitter e;
@@ -69,7 +65,6 @@ static inline AdaptiveEmitter adaptive_emitter(
     e.cells = cells;
     e.sky = sky_from(sky_theta, sky_phi, sky_values, (const global float*)0, params->sky_theta_nodes,
                      params->sky_phi_nodes);
-    e.cell_stats = cell_stats;
     e.frames = frames;
     e.portal_nodes = portal_nodes;
     e.portal_packets = portal_packets;
@@ -88,7 +83,6 @@ static inline int emit_adaptive(const global RenderParams* params, const Adaptiv
     const float2 ux = unit16x2(bits.z), uv = unit16x2(bits.y);
     const uint part = FEN_CELL_PARTS * c + (ux.x >= 0.5f ? 1u : 0u) + (ux.y >= 0.5f ? 2u : 0u) +
                       (uv.x >= 0.5f ? 4u : 0u) + (uv.y >= 0.5f ? 8u : 0u);
-    atom_inc(e->cell_stats + FEN_CELL_STATS_WORDS * (ulong)part + FEN_CELL_PATHS);
     p->beta = (float4)(0.0f, 0.0f, 0.0f, as_float(part)); /* what a rejected candidate leaves */
 
     float3 weight, dir;

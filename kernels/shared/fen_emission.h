@@ -33,9 +33,11 @@
 #define FEN_CELL_SUM_HI 1
 #define FEN_CELL_SUMSQ_LO 2
 #define FEN_CELL_SUMSQ_HI 3
-#define FEN_CELL_PATHS 4       /* paths emitted from the part (rejected candidates included) */
-#define FEN_CELL_CONNECTIONS 5 /* contributions that reached the camera */
-#define FEN_CELL_STATS_WORDS 6
+#define FEN_CELL_CONNECTIONS 4 /* contributions that reached the camera */
+#define FEN_CELL_STATS_WORDS 5
+/* The paths drawn from a part are not counted on the device: the host knows how many paths a
+   pass ran and each part's probability, P(cell) / 16 exactly (16-bit uniforms split their halves
+   evenly), so it uses that expectation -- an atomic per path cost a quarter of the emission. */
 
 FEN_NS_BEGIN
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "emission/adaptive_grid.h"
 #include "util/error.h"
@@ -161,6 +162,20 @@ TEST(AdaptiveGrid, SplitsWhereTheLightInsideACellIsUneven)
     EXPECT_GT(litSky.prob, 10.0 * g.cells()[4].prob);
     EXPECT_EQ(g.cells()[8].depth, 2u) << "the even cell is not split";
     EXPECT_EQ(g.cells()[8].skyDepth, 1u);
+}
+
+TEST(AdaptiveGrid, StatisticsOutOfRangeFallBackToTheBase)
+{
+    // An overflowed sum must leave a valid grid: finite probabilities, every cell alive.
+    AdaptiveGrid g = grid(cells(3), GridLearning{});
+    std::vector<GridCell::Stats> inf = even(1e5, 0.1, 1.0);
+    inf[5].sum = std::numeric_limits<double>::infinity();
+    feed(g, {inf, even(1e5, 0.1, 1.0), even(1e5, 0.1, 1.0)});
+    g.update();
+    for (const auto& c : g.cells()) {
+        EXPECT_TRUE(std::isfinite(c.prob));
+        EXPECT_GT(c.prob, 0.0);
+    }
 }
 
 TEST(AdaptiveGrid, DeterministicAndChecked)
