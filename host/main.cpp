@@ -123,6 +123,10 @@ int main(int argc, char** argv)
                           "With adaptive: split a cell when that lowers the learned objective by this share (default 1/2048)");
     renderCmd->add_option("--adaptive-first-pass", render.adaptiveFirstPass,
                           "With adaptive: paths of the first learning pass; passes double (default 65536)");
+    renderCmd->add_option("--adaptive-prior", render.adaptivePrior,
+                          "With adaptive: pseudo-paths of the prior in every cell (default 32)");
+    renderCmd->add_option("--adaptive-weights", render.adaptiveWeights,
+                          "With adaptive: batches weigh by predicted precision, or all alike: predicted (default) or equal");
     renderCmd->add_option("--adaptive-max-cells", render.adaptiveMaxCells,
                           "With adaptive: most cells the grid may have (default 32768)");
     renderCmd->add_option("--portal-overlap", render.portalOverlap,

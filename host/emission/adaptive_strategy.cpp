@@ -124,6 +124,7 @@ public:
         learning.maxDepth = static_cast<std::uint32_t>(opt_.maxDepth);
         learning.maxSkyDepth = static_cast<std::uint32_t>(opt_.maxSkyDepth);
         learning.maxCells = opt_.maxCells;
+        learning.priorPaths = opt_.priorPaths;
         grid_ = std::make_unique<AdaptiveGrid>(std::move(cells), learning, [this](const GridCell& c, double share[4]) {
             double total = 0.0;
             for (std::uint32_t q = 0; q < 4; ++q) {
@@ -154,8 +155,9 @@ public:
     bool learns() const override { return true; }
     double batchWeight() override
     {
-        batchWeights_.push_back(lastBatchWeight_);
-        return lastBatchWeight_;
+        const double w = opt_.weighBatches ? lastBatchWeight_ : 1.0;
+        batchWeights_.push_back(w);
+        return w;
     }
     const cl::Buffer& cellStats() const override { return stats_; }
     double statsScale() const override { return statsScale_; }
@@ -236,6 +238,7 @@ public:
             {"defensive", opt_.defensive},
             {"estimate", opt_.estimate == GridEstimate::Pooled ? "pooled" : "squares"},
             {"split_gain", opt_.splitGain},
+            {"prior_paths", opt_.priorPaths},
             {"learn_seconds", learnSeconds_},
             {"paths_learned_from", grid_->paths()},
             {"connections_per_path", grid_->paths() > 0.0 ? grid_->connections() / grid_->paths() : 0.0},
@@ -463,6 +466,8 @@ void validateAdaptiveOptions(const AdaptiveOptions& o)
         throw Error(cat("--adaptive-split ", o.splitGain, " must be in (0, 1]"));
     if (o.firstPass < 1024 || o.firstPass > (std::uint64_t{1} << 40))
         throw Error(cat("--adaptive-first-pass ", o.firstPass, " must be in 1024..2^40 paths"));
+    if (!(o.priorPaths > 0.0 && o.priorPaths <= 1e9))
+        throw Error(cat("--adaptive-prior ", o.priorPaths, " must be in (0, 10^9] pseudo-paths"));
     if (o.maxCells < 1 || o.maxCells > (1u << 22))
         throw Error(cat("--adaptive-max-cells ", o.maxCells, " must be in 1..4194304"));
 }

@@ -51,6 +51,8 @@ struct AdaptiveOptions {
     double defensive = 0.1;    // share of the base density in the mixture (alpha)
     double diskShare = 0.1;    // over a portal base: the disk's share of the base density (beta)
     double splitGain = 1.0 / 2048.0;  // split a cell when that lowers the learned objective this much
+    double priorPaths = 32.0;  // pseudo-paths of the prior in every cell
+    bool weighBatches = true;  // batches weigh by predicted precision (else all alike)
     std::uint64_t firstPass = 1u << 16;  // paths of the first learning pass; each pass doubles
     std::uint32_t maxCells = 1u << 15;
 };

@@ -71,7 +71,8 @@ EmissionSettings emissionSettings(const RenderOptions& opt)
         throw Error("--base 'adaptive': expected uniform or portal");
     const bool tuned = !opt.adaptiveEstimate.empty() || opt.adaptiveInitialSkyDepth >= 0 || opt.adaptiveMaxSkyDepth >= 0 || opt.adaptiveInitialDepth >= 0 || opt.adaptiveMaxDepth >= 0 ||
                        opt.adaptiveDefensive >= 0.0 || opt.adaptiveDiskShare >= 0.0 || opt.adaptiveSplit >= 0.0 ||
-                       opt.adaptiveFirstPass > 0 || opt.adaptiveMaxCells > 0;
+                       opt.adaptiveFirstPass > 0 || opt.adaptiveMaxCells > 0 || opt.adaptivePrior >= 0.0 ||
+                       !opt.adaptiveWeights.empty();
     if (tuned && !adaptive)
         throw Error("the --adaptive-* options apply to --method adaptive");
     if (opt.adaptiveInitialSkyDepth >= 0)
@@ -96,6 +97,12 @@ EmissionSettings emissionSettings(const RenderOptions& opt)
         a.firstPass = opt.adaptiveFirstPass;
     if (opt.adaptiveMaxCells > 0)
         a.maxCells = opt.adaptiveMaxCells;
+    if (opt.adaptivePrior >= 0.0)
+        a.priorPaths = opt.adaptivePrior;
+    if (opt.adaptiveWeights == "equal")
+        a.weighBatches = false;
+    else if (!opt.adaptiveWeights.empty() && opt.adaptiveWeights != "predicted")
+        throw Error(cat("--adaptive-weights '", opt.adaptiveWeights, "': expected predicted or equal"));
     if (adaptive)
         validateAdaptiveOptions(a);
     return e;

@@ -32,6 +32,8 @@ struct RenderOptions {
     double adaptiveSplit = -1.0;
     std::uint64_t adaptiveFirstPass = 0;
     std::uint32_t adaptiveMaxCells = 0;
+    double adaptivePrior = -1.0;
+    std::string adaptiveWeights;    // --adaptive-weights predicted|equal
     int bvhWidth = 0;
     int batches = 16;
     int cameraSpp = 1;
