@@ -316,12 +316,149 @@ def bay_window_scene(path):
                    "sun_altitude_deg": 30.0, "sun_azimuth_deg": 200.0})
 
 
+def wall_with_holes(rect, u0, u1, v0, v1, holes):
+    """A wall [u0, u1] x [v0, v1] (u along the wall, v = y) with rectangular openings
+    holes = [(a0, a1, b0, b1), ...] (inside the wall, not overlapping), as rectangles made by
+    rect(a0, a1, b0, b1): horizontal bands between the openings' edges, each cut around the
+    openings that span it. rect is e.g. `lambda a0, a1, b0, b1: rect_x(a0, a1, b0, b1, z)`.
+    """
+    vs = sorted({v0, v1} | {b for h in holes for b in h[2:]})
+    tris = []
+    for b0, b1 in zip(vs, vs[1:]):
+        a = u0
+        for h0, h1, _, _ in sorted(h for h in holes if h[2] <= b0 and h[3] >= b1):
+            if h0 > a:
+                tris += rect(a, h0, b0, b1)
+            a = h1
+        if u1 > a:
+            tris += rect(a, u1, b0, b1)
+    return tris
+
+
+def house_scene(path, ground_albedo):
+    """scenes/house.gltf (ground_albedo 0.2) and scenes/house_snow.gltf (0.9) — after the paper's
+    "House" (its Fig. 4-5, Table 2): a two-storey house with many windows, the camera in an
+    upstairs room lit mostly indirectly.
+
+    Footprint x in [0, 10], z in [0, 8] (south facade at z = 8), storeys 2.8 m, flat roof at
+    5.6 m. Each floor has a south room (z in [4, 8], the whole width) and two north rooms
+    (x in [0, 5] and [5, 10], z in [0, 4]); the partition z = 4 has two open 0.9 x 2.1 m doorways
+    (x in [3.8, 4.7] into the north-west room, [6.2, 7.1] into the north-east one); the partition
+    x = 5 has a doorway downstairs and none upstairs. Between the storeys: the ground floor's
+    ceiling at 2.75 m and the upper floor at 2.8 m (two sheets, each with its own albedo); no stair.
+    16 glazed windows (thin glass 0.9 / IOR 1.5, one node each, extras.portal = true), 1.4 m high
+    with sills at 0.9 m above each floor: 3 per storey south (1.6 m wide), 2 per storey north
+    (one per north room, 1.2 m), 2 per storey east (north-east and south room, 1.2 m), 1 per storey
+    west (south room, 1.2 m). Names window_<facade>_<n>, ground floor first, then west to east
+    (north and south facades) or north to south (east and west). No exterior door.
+    A 40 x 40 m ground plane around the house. Sun at altitude 35 deg, azimuth 200 deg
+    (south-south-west), 70 klux; CIE clear sky (type 12) for it, zenith luminance 3500 cd/m^2.
+    The camera stands upstairs in the north-east corner of the north-west room, looking at its
+    south-west corner: the west wall, the partition and the floor, lit through the doorway from
+    the sunny south room and by its own north window (behind the camera, out of view); no sun
+    reaches this room.
+    """
+    g = Gltf("fenestra scripts/make_scenes.py")
+    X, Z, H = 10.0, 8.0, 2.8             # footprint x in [0, X], z in [0, Z]; storey height
+    Zp, Xp = 4.0, 5.0                    # partitions z = Zp (south room | north rooms), x = Xp
+    slab = 0.05                          # the ground floor's ceiling is this far below the floor
+    sill, top = 0.9, 2.3                 # window sill and head above each floor
+    door_h = 2.1
+    floor = g.material("floor", (0.35, 0.3, 0.25))
+    wall = g.material("wall", (0.7, 0.7, 0.7))
+    ceiling = g.material("ceiling", (0.8, 0.8, 0.8))
+    ground = g.material("ground", (ground_albedo,) * 3)
+    glass = g.material("glass", (1.0, 1.0, 1.0), transmission=0.9, ior=1.5)
+    storeys = (0.0, H)
+    # windows per facade: (u0, u1) along the facade, on both storeys
+    south = [(1.0, 2.6), (4.2, 5.8), (7.4, 9.0)]        # x
+    north = [(1.9, 3.1), (6.9, 8.1)]                    # x: north-west, north-east room
+    east = [(1.4, 2.6), (5.4, 6.6)]                     # z: north-east room, south room
+    west = [(5.4, 6.6)]                                 # z: south room
+
+    def holes(spans):
+        return [(u0, u1, y + sill, y + top) for y in storeys for u0, u1 in spans]
+
+    g.mesh_node("floors", rect_y(0, X, 0, Z, 0.0) + rect_y(0, X, 0, Z, H), floor)
+    g.mesh_node("ceilings", rect_y(0, X, 0, Z, H - slab) + rect_y(0, X, 0, Z, 2 * H), ceiling)
+    g.mesh_node("facades",
+                wall_with_holes(lambda a0, a1, b0, b1: rect_x(a0, a1, b0, b1, Z),
+                                0, X, 0, 2 * H, holes(south)) +
+                wall_with_holes(lambda a0, a1, b0, b1: rect_x(a0, a1, b0, b1, 0.0),
+                                0, X, 0, 2 * H, holes(north)) +
+                wall_with_holes(lambda a0, a1, b0, b1: rect_z(a0, a1, b0, b1, X),
+                                0, Z, 0, 2 * H, holes(east)) +
+                wall_with_holes(lambda a0, a1, b0, b1: rect_z(a0, a1, b0, b1, 0.0),
+                                0, Z, 0, 2 * H, holes(west)), wall)
+    partitions = []
+    for y0, y1 in ((0.0, H - slab), (H, 2 * H)):
+        partitions += wall_with_holes(lambda a0, a1, b0, b1: rect_x(a0, a1, b0, b1, Zp),
+                                      0, X, y0, y1,
+                                      [(3.8, 4.7, y0, y0 + door_h), (6.2, 7.1, y0, y0 + door_h)])
+    partitions += wall_with_holes(lambda a0, a1, b0, b1: rect_z(a0, a1, b0, b1, Xp),
+                                  0, Zp, 0, H - slab, [(1.5, 2.4, 0.0, door_h)])
+    partitions += rect_z(0, Zp, H, 2 * H, Xp)
+    g.mesh_node("partitions", partitions, wall)
+    for side, spans, pane in (
+            ("south", south, lambda u0, u1, b0, b1: rect_x(u0, u1, b0, b1, Z)),
+            ("north", north, lambda u0, u1, b0, b1: rect_x(u0, u1, b0, b1, 0.0)),
+            ("east", east, lambda u0, u1, b0, b1: rect_z(u0, u1, b0, b1, X)),
+            ("west", west, lambda u0, u1, b0, b1: rect_z(u0, u1, b0, b1, 0.0))):
+        for n, (u0, u1, b0, b1) in enumerate(holes(spans), 1):
+            g.mesh_node("window_%s_%d" % (side, n), pane(u0, u1, b0, b1), glass,
+                        extras={"portal": True})
+    g.mesh_node("ground", rect_y(-15.0, 25.0, -16.0, 24.0, -0.02), ground)
+    g.sun("sun", 35.0, 200.0, 70000.0)
+    g.camera("camera", (4.6, H + 1.6, 0.4), (0.0, H + 0.7, 3.6), 60.0, 4.0 / 3.0)
+    g.write(path, {"type": "cie", "cie_type": 12, "zenith_luminance": 3500.0,
+                   "sun_altitude_deg": 35.0, "sun_azimuth_deg": 200.0})
+
+
+def courtyard_scene(path):
+    """scenes/courtyard.gltf — light reflected from outside: a 5 x 4 x 2.8 m room whose only
+    window (2 x 1.5 m, sill 0.9 m, thin glass 0.9 / IOR 1.5, extras.portal = true) faces north
+    across a courtyard onto the sunlit south wall of a neighbouring building.
+
+    Room x in [0, 5], z in [0, 4], window in the north wall z = 0. The neighbour is its south wall
+    alone (node `neighbour`): z = -6, x in [-5, 10], 9 m tall, albedo 0.6, in full sun; it hides
+    the sky below 51 deg altitude from the window. The courtyard floor and the ground around are one
+    plane of albedo 0.3, x in [-10, 15], z in [-6, 10]. Sun due south at altitude 40 deg, 70 klux
+    (it never enters the window); CIE clear sky (type 12) for it, zenith luminance 3500 cd/m^2.
+    The camera stands in the north-west corner beside the window, looking at the south-east
+    corner: the floor and the south and east walls, lit mostly by the neighbour's wall.
+    """
+    g = Gltf("fenestra scripts/make_scenes.py")
+    W, D, H = 5.0, 4.0, 2.8
+    wx0, wx1, wy0, wy1 = 1.5, 3.5, 0.9, 2.4
+    floor = g.material("floor", (0.35, 0.3, 0.25))
+    wall = g.material("wall", (0.7, 0.7, 0.7))
+    ceiling = g.material("ceiling", (0.8, 0.8, 0.8))
+    ground = g.material("ground", (0.3, 0.3, 0.3))
+    facade = g.material("neighbour", (0.6, 0.6, 0.6))
+    glass = g.material("glass", (1.0, 1.0, 1.0), transmission=0.9, ior=1.5)
+    g.mesh_node("floor", rect_y(0, W, 0, D, 0.0), floor)
+    g.mesh_node("ceiling", rect_y(0, W, 0, D, H), ceiling)
+    g.mesh_node("north_wall", wall_with_hole(0, W, 0, H, 0.0, wx0, wx1, wy0, wy1), wall)
+    g.mesh_node("walls", rect_x(0, W, 0, H, D) + rect_z(0, D, 0, H, 0.0) +
+                rect_z(0, D, 0, H, W), wall)
+    g.mesh_node("window", rect_x(wx0, wx1, wy0, wy1, 0.0), glass, extras={"portal": True})
+    g.mesh_node("neighbour", rect_x(-5.0, 10.0, -0.02, 9.0, -6.0), facade)
+    g.mesh_node("ground", rect_y(-10.0, 15.0, -6.0, 10.0, -0.02), ground)
+    g.sun("sun", 40.0, 180.0, 70000.0)
+    g.camera("camera", (0.4, 1.6, 0.4), (3.6, 0.5, 3.4), 60.0, 4.0 / 3.0)
+    g.write(path, {"type": "cie", "cie_type": 12, "zenith_luminance": 3500.0,
+                   "sun_altitude_deg": 40.0, "sun_azimuth_deg": 180.0})
+
+
 def main():
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
     os.makedirs(root, exist_ok=True)
     room_scene(os.path.join(root, "room.gltf"))
     inner_room_scene(os.path.join(root, "inner_room.gltf"))
     bay_window_scene(os.path.join(root, "bay_window.gltf"))
+    house_scene(os.path.join(root, "house.gltf"), 0.2)
+    house_scene(os.path.join(root, "house_snow.gltf"), 0.9)
+    courtyard_scene(os.path.join(root, "courtyard.gltf"))
 
 
 if __name__ == "__main__":
