@@ -3,8 +3,9 @@
  * Work-item i: if connections[i] names a pixel, the segment from its origin to the pinhole is
  * traced (glass multiplies by T (1 - R), anything opaque blocks: lib/transmittance.h) and the
  * surviving contribution is added to the pixel in 128-bit fixed point (lib/accumulate.h). Built
- * with -DFEN_EMISSION_STATS (a learning strategy), its luminance and squared luminance also go to
- * the emission cell in connections[i].value.w (cell_stats; otherwise a placeholder never read).
+ * with -DFEN_EMISSION_STATS (a strategy that gathers statistics), its luminance and squared
+ * luminance also go to the emission cell part in connections[i].value.w (cell_stats; otherwise a
+ * placeholder never read); a part flagged FEN_PART_ESTIMATE_ONLY feeds the statistics only.
  * Atomics: pixel accumulators, cell statistics, shadow-ray counter (per work-group).
  */
 #include "lib/accumulate.h"
@@ -30,10 +31,14 @@ static inline uint connect_one(uint i, global const RenderParams* params,
                                                normalize(c.to_cam.xyz));
     if (trans.x > 0.0f || trans.y > 0.0f || trans.z > 0.0f) {
         const float3 value = c.value.xyz * trans;
-        splat_rgb(accum, pixel, value, params->fixed_scale, counters);
 #ifdef FEN_EMISSION_STATS
-        cell_stats_add(cell_stats, as_uint(c.value.w), value, params->fixed_scale, params->stats_scale,
-                       counters);
+        const uint part = as_uint(c.value.w);
+        if (!(part & FEN_PART_ESTIMATE_ONLY))
+            splat_rgb(accum, pixel, value, params->fixed_scale, counters);
+        cell_stats_add(cell_stats, part & ~FEN_PART_ESTIMATE_ONLY, value, params->fixed_scale,
+                       params->stats_scale, counters);
+#else
+        splat_rgb(accum, pixel, value, params->fixed_scale, counters);
 #endif
     }
     return 1;

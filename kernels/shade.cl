@@ -9,7 +9,8 @@
  *    connections[i] for connect.cl to test and splat -- then scatter cosine-weighted on the side
  *    the light arrived at, surviving Russian roulette with probability q = max(rho) (weight
  *    *= rho / q, so its largest channel keeps its value);
- *  - a path reaching params->max_depth interactions dies (counted: a bias that is reported).
+ *  - a path reaching params->max_depth interactions dies (counted, with its flux: a bias that is
+ *    reported; the default cap is high enough that only endless paths meet it).
  * Writes paths[i] and connections[i] (pixel FEN_INVALID_ID when there is none). Atomics: the
  * alive counter (per work-group), the max-depth counter.
  */
@@ -90,8 +91,11 @@ static inline uint shade_one(uint i, global const RenderParams* params, global P
     }
     p.depth += 1;
     if (alive && p.depth >= params->max_depth) {
+        /* the cap guards against endless paths; what it removes is measured (rare: direct atomics) */
         alive = 0;
         counter_add(counters, FEN_CTR_MAX_DEPTH, 1);
+        const float y = 0.2126f * p.beta.x + 0.7152f * p.beta.y + 0.0722f * p.beta.z;
+        fixed_add128(counters + FEN_CTR_CUT_FLUX_LO, y * params->fixed_scale);
     }
     if (!alive) {
         paths[i].flags = 0;

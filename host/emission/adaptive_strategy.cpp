@@ -153,6 +153,12 @@ public:
                                frames_, portalBvh_->nodes(), portalBvh_->packets());
     }
     bool learns() const override { return true; }
+    // The flux through the disk, whatever the base: the cells cover every line once
+    // (tests/kernels/adaptive_sampling_test.cpp).
+    double emittedFluxPerPath() const override
+    {
+        return M_PI * radius_m_ * radius_m_ * (sunY_ + (goniogram_ ? goniogram_->integral() : 0.0));
+    }
     double batchWeight() override
     {
         const double w = opt_.weighBatches ? lastBatchWeight_ : 1.0;

@@ -1,8 +1,12 @@
 // portal_strategy.cpp — the `portal` strategy's buffers and report (portal_strategy.h).
 #include "emission/portal_strategy.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "cl/launch.h"
 #include "trace/device_bvh.h"
+#include "util/error.h"
 
 namespace fen {
 
@@ -21,9 +25,13 @@ const char* overlapName(PortalOverlap o)
 class PortalStrategy final : public EmissionStrategy {
 public:
     PortalStrategy(const EmissionSettings& settings, const EmissionInputs& in)
-        : sky_(in.deviceSky), overlap_(settings.overlap),
-          pe_(setupPortalEmission(in.scene, in.sky, in.goniogram, settings.portals, in.bvhWidth))
+        : ctx_(in.ctx), sky_(in.deviceSky), overlap_(settings.overlap), complement_(settings.portalComplement),
+          fixedScale_(in.pixelFixedScale),
+          pe_(setupPortalEmission(in.scene, in.sky, in.goniogram, settings.portals, in.bvhWidth)),
+          uniform_(setupUniformEmission(in.scene, in.sky))
     {
+        if (!(complement_ >= 0.0 && complement_ <= 0.5))
+            throw Error(cat("--portal-complement ", complement_, " must be in 0..0.5"));
         ocl::Context& c = in.ctx;
         // Sky paths: factor_k sin(theta) times 1 -- the portals' projected area W(v) comes in per
         // path (lib/emit_portal.h).
@@ -32,6 +40,7 @@ public:
         dev::PortalParams pp{};
         pp.groups = static_cast<std::uint32_t>(pe_.groups.size());
         pp.overlap = static_cast<std::uint32_t>(settings.overlap);
+        pp.complement = static_cast<float>(complement_);
         portalParams_ = c.buffer(CL_MEM_READ_ONLY, sizeof pp, "portal parameters", &pp);
         alias_ = c.buffer(CL_MEM_READ_ONLY, pe_.sources.alias.size() * 4, "source table", pe_.sources.alias.data());
         factor_ = c.buffer(CL_MEM_READ_ONLY, pe_.skyFactor.size() * 4, "sky weights", pe_.skyFactor.data());
@@ -41,7 +50,15 @@ public:
                         pe_.triangleCdf.data());
         vertices_ = c.buffer(CL_MEM_READ_ONLY, pe_.vertices.size() * 16, "portal triangles", pe_.vertices.data());
         bvh_ = std::make_unique<DeviceBvh>(c, pe_.bvh);
-        noStats_ = c.buffer(CL_MEM_READ_WRITE, 0, "cell statistics (none)");
+        const dev::SourceParams up = sourceParams(uniform_.sources, uniform_.sunWeight, uniform_.skyWeight);
+        uniformParams_ = c.buffer(CL_MEM_READ_ONLY, sizeof up, "complement emission parameters", &up);
+        uniformAlias_ = c.buffer(CL_MEM_READ_ONLY, uniform_.sources.alias.size() * 4, "complement source table",
+                                 uniform_.sources.alias.data());
+        uniformFactor_ = c.buffer(CL_MEM_READ_ONLY, uniform_.skyFactor.size() * 4, "complement sky weights",
+                                  uniform_.skyFactor.data());
+        // Two parts: 0 the portal paths, 1 the complement.
+        stats_ = c.buffer(CL_MEM_READ_WRITE, 2 * FEN_CELL_STATS_WORDS * 8, "portal statistics");
+        c.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, 2 * FEN_CELL_STATS_WORDS * 8);
     }
 
     EmissionMethod method() const override { return EmissionMethod::Portal; }
@@ -50,9 +67,32 @@ public:
     {
         ocl::setKernelArgsFrom(emit, first, sourceParams_, alias_, sky_.theta, sky_.phi, sky_.values,
                                factor_, portalParams_, groups_, range_, cdf_, vertices_, bvh_->nodes(),
-                               bvh_->packets());
+                               bvh_->packets(), uniformParams_, uniformAlias_, uniformFactor_);
     }
-    const cl::Buffer& cellStats() const override { return noStats_; }
+    bool learns() const override { return complement_ > 0.0; }
+    // Through the portals (overlaps counted once per portal, so an upper bound), and with a
+    // complement also the rest of the disk's flux, which its paths carry.
+    double emittedFluxPerPath() const override
+    {
+        const double portals = pe_.sunFlux_lm + pe_.skyFlux_lm;
+        return complement_ > 0.0 ? std::max(portals, uniform_.sunFlux + uniform_.skyFlux) : portals;
+    }
+    const cl::Buffer& cellStats() const override { return stats_; }
+    // The complement's share of the light that reached the camera in the batch just ended.
+    void afterPaths(std::uint64_t, bool batchEnd) override
+    {
+        if (!batchEnd || complement_ <= 0.0)
+            return;
+        std::uint64_t w[2 * FEN_CELL_STATS_WORDS];
+        auto& q = ctx_.queue();
+        q.enqueueReadBuffer(stats_, CL_TRUE, 0, sizeof w, w);
+        double sum[2];
+        for (int k = 0; k < 2; ++k)
+            sum[k] = (static_cast<double>(w[FEN_CELL_STATS_WORDS * k + FEN_CELL_SUM_HI]) * 18446744073709551616.0 +
+                      static_cast<double>(w[FEN_CELL_STATS_WORDS * k + FEN_CELL_SUM_LO])) / fixedScale_;
+        unreached_.push_back(sum[0] + sum[1] > 0.0 ? sum[1] / (sum[0] + sum[1]) : 0.0);
+        q.enqueueFillBuffer(stats_, cl_ulong(0), 0, 2 * FEN_CELL_STATS_WORDS * 8);
+    }
     nlohmann::json report() const override
     {
         return {{"portal_nodes", pe_.portals.nodes},
@@ -61,14 +101,36 @@ public:
                 {"portal_overlap", overlapName(overlap_)},
                 {"sun_flux_lm", pe_.sunFlux_lm},
                 {"sky_flux_lm", pe_.skyFlux_lm},
-                {"precompute_seconds", pe_.precomputeSeconds}};
+                {"precompute_seconds", pe_.precomputeSeconds},
+                {"complement", complement_},
+                {"unreached", unreached()}};
+    }
+
+    // The complement's share over the batches: mean and standard error (null without a complement).
+    nlohmann::json unreached() const
+    {
+        if (complement_ <= 0.0 || unreached_.empty())
+            return nullptr;
+        const double n = static_cast<double>(unreached_.size());
+        double m = 0.0, ss = 0.0;
+        for (double x : unreached_)
+            m += x / n;
+        for (double x : unreached_)
+            ss += (x - m) * (x - m);
+        const double se = unreached_.size() > 1 ? std::sqrt(ss / (n - 1.0) / n) : 0.0;
+        return {{"share", m}, {"std_err", se}, {"batches", unreached_.size()}};
     }
 
 private:
+    ocl::Context& ctx_;
     const DeviceSky& sky_;
     PortalOverlap overlap_;
+    double complement_, fixedScale_;
     PortalEmission pe_;
-    cl::Buffer sourceParams_, portalParams_, alias_, factor_, groups_, range_, cdf_, vertices_, noStats_;
+    UniformSources uniform_;
+    std::vector<double> unreached_;  // per batch (calibration batches too: each is an estimate)
+    cl::Buffer sourceParams_, portalParams_, alias_, factor_, groups_, range_, cdf_, vertices_, stats_,
+        uniformParams_, uniformAlias_, uniformFactor_;
     std::unique_ptr<DeviceBvh> bvh_;
 };
 

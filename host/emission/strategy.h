@@ -61,6 +61,9 @@ struct EmissionSettings {
     EmissionMethod method = EmissionMethod::Uniform;
     std::string portals;  // --portals: node names replacing the scene's marking
     PortalOverlap overlap = PortalOverlap::Reject;
+    // `portal`: the share of paths that estimate the light no portal passes (0: the paper's
+    // method alone, no estimate).
+    double portalComplement = 0.05;
     AdaptiveOptions adaptive;
 };
 
@@ -95,6 +98,9 @@ public:
     // The weight of the batch that afterPaths(.., true) just ended, relative to the others; 1 for
     // a strategy whose density never changes (all batches alike).
     virtual double batchWeight() { return 1.0; }
+    // The mean luminous flux a path carries when it starts (lm): what the light --max-bounces
+    // removes is reported against it.
+    virtual double emittedFluxPerPath() const = 0;
     virtual nlohmann::json report() const = 0;
 };
 

@@ -28,6 +28,7 @@ public:
         ocl::setKernelArgsFrom(emit, first, params_, alias_, sky_.theta, sky_.phi, sky_.values, factor_);
     }
     const cl::Buffer& cellStats() const override { return noStats_; }
+    double emittedFluxPerPath() const override { return sources_.sunFlux + sources_.skyFlux; }
     nlohmann::json report() const override
     {
         return {{"sun_flux_lm", sources_.sunFlux},

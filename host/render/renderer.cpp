@@ -81,6 +81,8 @@ struct Renderer::Impl {
         wavefront->setParams(p);
     }
 
+    bool stopping() const { return settings.stop && settings.stop->load(); }
+
     void progress(bool force)
     {
         if (!settings.progress)
@@ -158,7 +160,7 @@ struct Renderer::Impl {
                 runBatch(base, cal, 0xFFFFFFFFu, scratch);
                 last = since(t0);
                 base += cal;
-                if (last >= enough || since(c0) >= 0.1 * settings.timeSeconds)
+                if (last >= enough || since(c0) >= 0.1 * settings.timeSeconds || stopping())
                     break;
                 cal *= 2;
             }
@@ -178,6 +180,10 @@ struct Renderer::Impl {
         for (;;) {
             if (settings.paths > 0 && done == batches)
                 break;
+            if (done >= 1 && stopping()) {
+                r.interrupted = true;
+                break;
+            }
             if (settings.paths == 0 && done >= 2) {
                 const double elapsed = r.calibrationSeconds + since(t0);
                 const double perBatchSeconds = since(t0) / done;
@@ -188,6 +194,9 @@ struct Renderer::Impl {
             stats.add(img, strategy->batchWeight());
             base += perBatch;
             ++done;
+            if (settings.onBatch)
+                settings.onBatch({done, perBatch * static_cast<std::uint64_t>(done),
+                                  r.calibrationSeconds + since(t0), &stats});
         }
         r.renderSeconds = since(t0);
         progress(true);
@@ -202,6 +211,7 @@ struct Renderer::Impl {
         r.roiBatchMeans = stats.roiBatchMeans();
         r.batchWeights = stats.weights();
         r.emission = strategy->report();
+        r.emittedFluxPerPath = strategy->emittedFluxPerPath();
         r.kernels = ctx.stats().entries();
         return r;
     }
@@ -216,6 +226,12 @@ double RenderResult::roiMean(std::size_t k) const
         W += batchWeights[b];
     }
     return v.empty() ? 0.0 : s / W;
+}
+
+double RenderResult::maxBounceFluxShare() const
+{
+    const double emitted = static_cast<double>(paths) * emittedFluxPerPath;
+    return emitted > 0.0 ? counts.cutFlux / emitted : 0.0;
 }
 
 double RenderResult::roiMeanStdErr(std::size_t k) const
@@ -242,6 +258,12 @@ Renderer::Renderer(ocl::Context& ctx, const Scene& scene, const std::optional<Go
                         "compares batches)"));
     if (settings.maxBounces < 1)
         throw Error(cat("--max-bounces ", settings.maxBounces, " must be at least 1"));
+    if (settings.batches > 1024)
+        throw Error(cat("--batches ", settings.batches, " is beyond 1024: every batch has a fixed cost "
+                        "(the camera pass, the statistics), and 16 already estimate the noise well"));
+    if (settings.paths > 0 && settings.paths < static_cast<std::uint64_t>(settings.batches))
+        throw Error(cat("--paths ", settings.paths, " is fewer than the ", settings.batches,
+                        " batches: give at least that many paths, or fewer --batches"));
     if (settings.cameraSpp < 1 || settings.cameraSpp > 1024)
         throw Error(cat("--camera-spp ", settings.cameraSpp, " must be in 1..1024"));
     if (settings.paths == 0 && settings.timeSeconds > 1e7)

@@ -12,6 +12,8 @@
 // batches so that about B of them fill the time.
 #pragma once
 
+#include <atomic>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -29,6 +31,16 @@
 
 namespace fen {
 
+class BatchStatistics;
+
+// After every counted batch: the statistics so far, for a progress record (error against time).
+struct BatchProgress {
+    int batches = 0;                // batches done
+    std::uint64_t paths = 0;        // paths in them
+    double seconds = 0.0;           // since the render started, calibration included
+    const BatchStatistics* stats = nullptr;
+};
+
 struct RenderSettings {
     EmissionSettings emission;
     std::uint64_t paths = 0;     // total light paths; 0 = use timeSeconds
@@ -36,11 +48,15 @@ struct RenderSettings {
     int batches = 16;            // independent batches (>= 2): the noise estimate's sample size
     int cameraSpp = 1;           // camera-pass samples per pixel, per batch
     std::uint32_t seed = 1;
-    int maxBounces = 64;         // surface interactions a path may have (bias beyond: reported)
+    int maxBounces = 1024;       // guards against endless paths; roulette ends them (cut flux: reported)
     int bvhWidth = 0;            // 0 = the device's default layout
     std::uint32_t poolSize = 0;  // path slots; 0 = automatic
     bool progress = false;       // progress line on stderr
     std::vector<Roi> rois;       // regions whose mean luminance is tracked batch by batch
+    std::function<void(const BatchProgress&)> onBatch;  // optional
+    // Set (by a signal handler) to stop: the batch in flight finishes and the render ends with the
+    // batches done -- at least one, so the image is valid.
+    const std::atomic<bool>* stop = nullptr;
 };
 
 struct RenderResult {
@@ -49,6 +65,7 @@ struct RenderResult {
     std::uint64_t paths = 0, pathsPerBatch = 0;
     int batches = 0;
     BatchCounts counts;                  // rays and counters of the counted batches
+    bool interrupted = false;         // stopped by settings.stop before its paths or time were done
     double renderSeconds = 0.0;       // the counted batches
     double calibrationSeconds = 0.0;  // --time only: the uncounted first batches
     double bvhSeconds = 0.0, kernelBuildSeconds = 0.0;
@@ -56,6 +73,7 @@ struct RenderResult {
     std::uint32_t poolSize = 0;
     EmissionMethod method = EmissionMethod::Uniform;
     nlohmann::json emission;          // the strategy's report
+    double emittedFluxPerPath = 0.0;  // lm (EmissionStrategy::emittedFluxPerPath)
     std::map<std::string, ocl::KernelStats::Entry> kernels;
     // roiBatchMeans[k][b]: mean luminance of settings.rois[k] in batch b. Batches are independent,
     // so their (weighted) spread gives the ROI mean's standard error (pixels within a batch are
@@ -64,6 +82,9 @@ struct RenderResult {
     std::vector<double> batchWeights;  // film.h BatchStatistics: 1 each unless the strategy learns
     double roiMean(std::size_t k) const;
     double roiMeanStdErr(std::size_t k) const;
+    // The flux the --max-bounces cap removed over the flux emitted: the relative bias of the cap
+    // (0 when nothing was cut).
+    double maxBounceFluxShare() const;
 };
 
 class Renderer {

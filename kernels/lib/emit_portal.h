@@ -12,6 +12,11 @@
  * drawn); then
  * divided by N (--portal-overlap weight) or kept with probability 1/N (reject: the path index is
  * spent all the same, so rejected candidates count as emitted paths).
+ * The complement (PortalParams.complement = c > 0, DESIGN.md §3.4): a share c of the paths are
+ * `uniform` paths whose line crosses no portal (lines that do are rejected: the portals' own) --
+ * the light the portals cannot reach, reflected from outside or through unmarked openings. Their
+ * weight is the uniform one over c; they are flagged FEN_PART_ESTIMATE_ONLY (part 1), so they
+ * feed the strategy's statistics, not the image; the portal paths (part 0) weigh 1 / (1 - c) more.
  * Build with -DFEN_BVH_WIDTH (the portals' BVH has the scene's layout).
  */
 #ifndef FEN_EMIT_PORTAL_H
@@ -35,6 +40,8 @@ typedef struct {
     Sky sky;
     Portals portals;
     const global PortalParams* portal_params;
+    SourceTable uniform_sources;  /* the complement's: `uniform`'s table and sky weights */
+    Sky uniform_sky;
 } PortalEmitter;
 
 /* The strategy's kernel arguments after (params, counters, paths), and how kernels/emit_*.cl assemble
@@ -45,11 +52,14 @@ typedef struct {
         global const float *sky_factor, global const PortalParams *portal_params,                \
         global const float4 *portal_groups, global const uint *portal_range,                     \
         global const ulong *portal_cdf, global const float4 *portal_vertices,                    \
-        global const BvhNode *portal_nodes, global const TriPacket4 *portal_packets
+        global const BvhNode *portal_nodes, global const TriPacket4 *portal_packets,              \
+        global const SourceParams *uniform_params, global const uint *uniform_alias,             \
+        global const float *uniform_factor
 #define FEN_PORTAL_EMITTER                                                                       \
     portal_emitter(params, source_params, source_alias, sky_theta, sky_phi, sky_values,          \
                    sky_factor, portal_params, portal_groups, portal_range, portal_cdf,           \
-                   portal_vertices, portal_nodes, portal_packets)
+                   portal_vertices, portal_nodes, portal_packets, uniform_params, uniform_alias, \
+                   uniform_factor)
 
 static inline Portals portals_from(const global float4* groups, const global uint* range,
                                    const global ulong* triangle_cdf, const global float4* vertices,
@@ -74,7 +84,8 @@ static inline PortalEmitter portal_emitter(
     const global PortalParams* portal_params, const global float4* portal_groups,
     const global uint* portal_range, const global ulong* portal_cdf,
     const global float4* portal_vertices, const global BvhNode* portal_nodes,
-    const global TriPacket4* portal_packets)
+    const global TriPacket4* portal_packets, const global SourceParams* uniform_params,
+    const global uint* uniform_alias, const global float* uniform_factor)
 {
     PortalEmitter e;
     e.sources.params = source_params;
@@ -84,6 +95,10 @@ static inline PortalEmitter portal_emitter(
     e.portals = portals_from(portal_groups, portal_range, portal_cdf, portal_vertices, portal_nodes,
                              portal_packets, portal_params->groups);
     e.portal_params = portal_params;
+    e.uniform_sources.params = uniform_params;
+    e.uniform_sources.alias = uniform_alias;
+    e.uniform_sky = sky_from(sky_theta, sky_phi, sky_values, uniform_factor, params->sky_theta_nodes,
+                             params->sky_phi_nodes);
     return e;
 }
 
@@ -155,6 +170,27 @@ static inline uint portal_pick_triangle(const Portals* portals, float3 dir, uint
     return first + cdf_search_binary(portals->triangle_cdf + first + g, count, r_tri);
 }
 
+/* A complement path (a share c of all): `uniform` emission, rejected when its line crosses a portal;
+   weight over c; flagged for the statistics only. */
+static inline int emit_portal_complement(const global RenderParams* params, const PortalEmitter* e,
+                                         RngBlock bits, float share, PathState* p)
+{
+    const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
+    const uint entry = alias_pick(e->uniform_sources.alias, e->uniform_sources.params->alias_shift, bits.x);
+    float3 weight;
+    const float3 dir = source_direction(params, &e->uniform_sky, e->uniform_sources.params, entry, u.z, u.w, &weight);
+    float3 t1, t2;
+    orthonormal_basis(dir, &t1, &t2);
+    const float3 origin = disk_ray_origin(params, dir, t1, t2, sample_disk(u.x, u.y));
+    const RayPre r = ray_setup(origin, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
+    if (bvh_intersect_any(e->portals.nodes, e->portals.packets, &r))
+        return 0;
+    p->org = (float4)(origin, 0.0f);
+    p->dir = (float4)(dir, 0.0f);
+    p->beta = (float4)(weight / share, as_float(FEN_PART_ESTIMATE_ONLY | 1u));
+    return 1;
+}
+
 /* Fills *p with a new path; returns 0 when the candidate is rejected (overlap) or carries no light. */
 static inline int emit_portal(const global RenderParams* params, const PortalEmitter* e, ulong path,
                               PathState* p)
@@ -163,6 +199,9 @@ static inline int emit_portal(const global RenderParams* params, const PortalEmi
     const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT);
     const RngBlock bits2 = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT_PORTAL);
     const float4 u2 = rng_unit24x4(bits2.y, bits2.z, bits2.w);
+    const float complement = e->portal_params->complement;
+    if (complement > 0.0f && u2.w < complement)
+        return emit_portal_complement(params, e, bits, complement, p);
 
     const uint entry = alias_pick(e->sources.alias, e->sources.params->alias_shift, bits.x);
     float3 beta;
@@ -186,6 +225,8 @@ static inline int emit_portal(const global RenderParams* params, const PortalEmi
             return 0;
     }
 
+    if (complement > 0.0f)
+        beta /= 1.0f - complement;
     p->org = (float4)(origin, 0.0f);
     p->dir = (float4)(dir, 0.0f);
     p->beta = (float4)(beta, 0.0f);

@@ -20,6 +20,10 @@
 #define FEN_OVERLAP_WEIGHT 1u
 #define FEN_OVERLAP_NONE 2u
 
+/* A path's beta.w part with this bit set only feeds the statistics: connect.cl does not add it to
+   the image (the portal strategy's estimate of the light its portals miss). */
+#define FEN_PART_ESTIMATE_ONLY 0x80000000u
+
 /* AdaptiveCell.region: the emission disk, or 1 + g for portal plane g. */
 #define FEN_REGION_DISK 0u
 
@@ -52,10 +56,10 @@ FEN_ASSERT_SIZE(SourceParams, 32);
 FEN_ASSERT_OFFSET(SourceParams, sky_scale, 16);
 
 typedef struct {
-    fen_u32 groups;   /* portal plane groups */
-    fen_u32 overlap;  /* FEN_OVERLAP_* */
+    fen_u32 groups;      /* portal plane groups */
+    fen_u32 overlap;     /* FEN_OVERLAP_* */
+    fen_f32 complement;  /* share of paths that estimate the light no portal passes (0: none) */
     fen_u32 pad0;
-    fen_u32 pad1;
 } PortalParams;
 FEN_ASSERT_SIZE(PortalParams, 16);
 

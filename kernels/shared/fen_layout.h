@@ -40,6 +40,7 @@
     X(SourceParams, sky_scale) \
     X(SourceParams, alias_shift) \
     X(PortalParams, overlap) \
+    X(PortalParams, complement) \
     X(AdaptiveCell, box)     \
     X(AdaptiveCell, dirs)    \
     X(AdaptiveCell, weight)  \

@@ -34,7 +34,9 @@
 #define FEN_CTR_EMITTED 8          /* paths that started (a rejected portal candidate does not) */
 #define FEN_CTR_CAMERA_GLASS_CUT 9 /* camera samples stopped after 16 glass sheets (bias, reported) */
 #define FEN_CTR_STATS_OVERFLOWS 10 /* emission statistics beyond their 128-bit range (dropped) */
-#define FEN_CTR_COUNT 11
+#define FEN_CTR_CUT_FLUX_LO 11     /* luminous flux of the paths --max-bounces cut (128-bit fixed */
+#define FEN_CTR_CUT_FLUX_HI 12     /*   point at fixed_scale): the light the cap removed */
+#define FEN_CTR_COUNT 13
 
 
 FEN_NS_BEGIN

@@ -202,8 +202,9 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
                      alias = buf(pe.sources.alias, "alias"),
                      groups = buf(pe.groups, "groups"), range = buf(pe.groupRange, "range"),
                      tcdf = buf(pe.triangleCdf, "tcdf"), verts = buf(pe.vertices, "verts");
+    // The complement (PortalParams.complement) is 0: its `uniform` tables are bound but never read.
     ocl::setKernelArgs(k, params, sourceParams, alias, theta, phi, values, factor, portalParams, groups,
-                       range, tcdf, verts, pbvh.nodes(), pbvh.packets(), out, n);
+                       range, tcdf, verts, pbvh.nodes(), pbvh.packets(), sourceParams, alias, factor, out, n);
     ocl::launch(*ctx, k, "portal_emit_probe", n);
     std::vector<cl_float4> w(n);
     ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, w.size() * 16, w.data());

@@ -322,5 +322,62 @@ TEST(Analytic, SkySeenDirectlyAndThroughGlass)
     EXPECT_GT(open, 300);
 }
 
+// A closed white box (every surface rho = 1) with a 0.9 x 0.9 m opening in its roof, under a
+// uniform sky: at equilibrium every interior surface has the sky's luminance L -- the furnace
+// test. A path escapes only through the opening (1/29 of the box's area), so paths bounce ~29
+// times, and Russian roulette (which never fires at rho = 1) cannot end them: only the opening
+// can. The default --max-bounces only guards against endless loops; a cap of 64 would remove
+// ~11 % of the light, which the cut-flux counter must report.
+Scene furnaceBox()
+{
+    test::SceneBuilder b;
+    const float S = 2.0f, o0 = 0.55f, o1 = 1.45f;
+    std::vector<Triangle> w;
+    for (const auto& r : {rect({0, 0, 0}, {S, 0, 0}, {0, 0, S}),  // floor
+                          rect({0, 0, 0}, {S, 0, 0}, {0, S, 0}), rect({0, 0, S}, {S, 0, 0}, {0, S, 0}),
+                          rect({0, 0, 0}, {0, 0, S}, {0, S, 0}), rect({S, 0, 0}, {0, 0, S}, {0, S, 0}),
+                          // roof around the opening
+                          rect({0, S, 0}, {S, 0, 0}, {0, 0, o0}), rect({0, S, o1}, {S, 0, 0}, {0, 0, S - o1}),
+                          rect({0, S, o0}, {o0, 0, 0}, {0, 0, o1 - o0}),
+                          rect({o1, S, o0}, {S - o1, 0, 0}, {0, 0, o1 - o0})})
+        w.insert(w.end(), r.begin(), r.end());
+    b.add("box", w, b.material("white", glm::vec3(1.0f)));
+    b.uniformSky(1000.0);
+    b.camera({1.0, 1.0, 1.0}, {1.0, 0.0, 1.0}, {0, 0, -1}, 60.0);
+    return b.build();
+}
+
+TEST(Analytic, FurnaceBoxIsUnbiasedByDefault)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    const int W = 32, H = 32;
+    const auto t = test::renderScene(*ctx, furnaceBox(), W, H, 4u << 20, {Roi{0, 0, W, H}});
+    expectClean(t.result);
+    std::printf("[ analytic ] furnace, default cap: %llu paths cut, flux share %.3g\n",
+                static_cast<unsigned long long>(t.result.counts.maxBounceCuts), t.result.maxBounceFluxShare());
+    EXPECT_LT(t.result.maxBounceFluxShare(), 1e-3);
+    expectMean(t.result, 0, 1000.0, 0.01, "furnace box");
+}
+
+TEST(Analytic, FurnaceBoxReportsWhatACapRemoves)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    const int W = 32, H = 32;
+    const auto t = test::renderScene(*ctx, furnaceBox(), W, H, 4u << 20, {Roi{0, 0, W, H}}, 1, 64);
+    expectClean(t.result);
+    const double m = t.result.roiMean(0), se = t.result.roiMeanStdErr(0);
+    // The flux entering through the opening: pi L A (a horizontal opening under a uniform sky).
+    const double entering_lm = M_PI * 1000.0 * 0.9 * 0.9;
+    const double cut_lm = t.result.counts.cutFlux / static_cast<double>(t.result.paths);
+    std::printf("[ analytic ] furnace, cap 64: cut %.4f of the entering flux (%.4g of the emitted), floor "
+                "%.4f of L (se %.2g)\n", cut_lm / entering_lm, t.result.maxBounceFluxShare(), m / 1000.0, se / 1000.0);
+    EXPECT_GT(t.result.counts.maxBounceCuts, 0u);
+    EXPECT_LT(m, 1000.0 - kSigmas * se) << "a cap of 64 removes light";
+    // At rho = 1 every unit of flux in the box adds the same to the interior's luminance, so the
+    // image falls short by the share of the entering flux the cap removed (up to the spatial shape
+    // of the light still bouncing after 64 bounces, which is uniform well within this noise).
+    EXPECT_NEAR(1.0 - m / 1000.0, cut_lm / entering_lm, kSigmas * se / 1000.0);
+}
+
 }  // namespace
 }  // namespace fen

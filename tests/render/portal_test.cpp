@@ -58,6 +58,34 @@ TEST(PortalOverlap, CorrectionMattersAndBothFixesAgree)
     EXPECT_GT(none.mean - wgt.mean, 4.0 * comb) << "double-counted light must show";
 }
 
+TEST(PortalBlindSpot, TheComplementMeasuresTheLightNoPortalPasses)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Two windows: with both marked, no light reaches the closed room but through them, and the
+    // complement paths (lines through no portal) carry none; with the south one alone, they carry
+    // the east window's, and the report says so. The image itself stays the portals' estimate.
+    const Scene scene = windowRoom(Windows::Two);
+    const auto sky = buildSky(scene.sky);
+    auto unreached = [&](const std::string& portals) {
+        RenderSettings s;
+        s.emission.method = EmissionMethod::Portal;
+        s.emission.portals = portals;
+        s.paths = 2u << 20;
+        Renderer r(*ctx, scene, sky, scene.cameras.at(0), 48, 36, s);
+        const RenderResult res = r.render();
+        EXPECT_EQ(res.emission["complement"], 0.05);
+        return std::make_pair(res.emission["unreached"]["share"].get<double>(),
+                              res.emission["unreached"]["std_err"].get<double>());
+    };
+    const auto both = unreached("");
+    const auto south = unreached("south_pane");
+    std::printf("[ portal   ] unreached light: both windows marked %.4f +- %.2g, the south one only %.4f +- %.2g\n",
+                both.first, both.second, south.first, south.second);
+    EXPECT_EQ(both.first, 0.0) << "a closed room lit through its marked windows has nothing to miss";
+    EXPECT_GT(south.first, 0.1);
+    EXPECT_GT(south.first, 4.0 * south.second);
+}
+
 TEST(PortalFailure, TheGapUnderTheDoorLosesMostOfTheLight)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);

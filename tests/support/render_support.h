@@ -43,7 +43,7 @@ struct TestRender {
 // Renders with `paths` light paths in 16 batches (seed 1 unless given), tracking `rois`.
 TestRender renderScene(ocl::Context& ctx, const Scene& scene, int width, int height,
                        std::uint64_t paths, std::vector<Roi> rois, std::uint32_t seed = 1,
-                       int maxBounces = 64);
+                       int maxBounces = 1024);
 
 // Configuration factor from a differential horizontal element at `p` (facing +y) to the
 // horizontal rectangle [x0,x1] x [z0,z1] at height y > p.y (Siegel & Howell's corner formula,
