@@ -3,6 +3,8 @@
 // Every user-facing failure (bad input, unknown option, missing device, failed kernel build)
 // arrives here as an exception and leaves as "fenestra: error: <message>" on stderr with exit
 // status 1 (2 for command-line usage errors). Nothing is printed twice, nothing crashes.
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -89,14 +91,16 @@ int main(int argc, char** argv)
     renderCmd->add_option("scene", render.scenePath, "glTF scene (.gltf or .glb)")->required();
     renderCmd->add_option("--out", render.outPath, "Output PATH.exr (PATH.png and PATH.json beside it)")
         ->required();
-    renderCmd->add_option("--paths", render.paths, "Light paths to trace");
+    // Signed, so that a negative count is an error rather than 2^64 - 1.
+    std::int64_t renderPaths = 0;
+    renderCmd->add_option("--paths", renderPaths, "Light paths to trace");
     renderCmd->add_option("--time", render.timeSeconds, "Render for about this many seconds instead");
     renderCmd->add_option("--width", render.width, "Image width (default: 640, or from --height)");
     renderCmd->add_option("--height", render.height, "Image height (default: from the camera's aspect ratio)");
     renderCmd->add_option("--camera", render.camera, "Camera node name (or camera name); default the first");
     renderCmd->add_option("--seed", render.seed, "Random seed (default 1)");
     renderCmd->add_option("--device", render.device, "OpenCL device: index or name substring");
-    renderCmd->add_option("--max-bounces", render.maxBounces, "Surface interactions per path (default 64)");
+    renderCmd->add_option("--max-bounces", render.maxBounces, "Surface interactions per path: a guard against endless paths, Russian roulette ends them (default 1024)");
     renderCmd->add_option("--roi", render.roi, "Region x0,y0,x1,y1 for the statistics (default: whole image)");
     renderCmd->add_option("--reference", render.referencePath, "Reference EXR: report RMSE and relative MSE");
     renderCmd->add_option("--method", render.method,
@@ -129,6 +133,8 @@ int main(int argc, char** argv)
                           "With adaptive: batches weigh by predicted precision, or all alike: predicted (default) or equal");
     renderCmd->add_option("--adaptive-max-cells", render.adaptiveMaxCells,
                           "With adaptive: most cells the grid may have (default 32768)");
+    renderCmd->add_option("--portal-complement", render.portalComplement,
+                          "With portal: share of paths that measure the light no portal passes (default 0.05; 0: none)");
     renderCmd->add_option("--portal-overlap", render.portalOverlap,
                           "Where portals overlap along a ray: reject (default) or weight; none is "
                           "biased (for demonstration)");
@@ -174,6 +180,13 @@ int main(int argc, char** argv)
                 render.bvhWidth = w[0];
             }
             render.progress = progressOff ? 0 : (progressOn ? 1 : -1);
+            if (renderCmd->count("--paths")) {
+                if (renderPaths <= 0)
+                    throw fen::Error("--paths " + std::to_string(renderPaths) + ": must be a positive number of paths");
+                render.paths = static_cast<std::uint64_t>(renderPaths);
+            }
+            if (renderCmd->count("--exposure") && !(render.exposure > 0.0 && std::isfinite(render.exposure)))
+                throw fen::Error("--exposure " + std::to_string(render.exposure) + ": must be a positive, finite multiplier");
             return fen::runRender(render);
         }
         if (*benchCmd) {

@@ -11,6 +11,7 @@ packages=(
   libglm-dev libopenexr-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgtest-dev libcli11-dev
   libembree-dev   # only the yardstick of `fenestra bench`
+  python3 python3-matplotlib python3-numpy   # scripts/compare.py's charts
 )
 
 missing=()

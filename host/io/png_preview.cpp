@@ -1,13 +1,11 @@
-// png_preview.cpp — tone mapping and PNG encoding (png_preview.h), via stb_image_write.
+// png_preview.cpp — tone mapping and the error map, encoded as PNG (png_preview.h).
 #include "io/png_preview.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include <stb/stb_image_write.h>
-
-#include "util/error.h"
+#include "io/output_files.h"
 
 namespace fen {
 
@@ -22,8 +20,7 @@ unsigned char encodeSrgb(double v)
 
 }  // namespace
 
-double writePngPreview(const std::string& path, const Image& image, double meanLuminance,
-                       double exposure)
+Preview pngPreview(const Image& image, double meanLuminance, double exposure)
 {
     if (!(exposure > 0.0))
         exposure = meanLuminance > 0.0 ? 0.18 / meanLuminance : 1.0;
@@ -34,9 +31,19 @@ double writePngPreview(const std::string& path, const Image& image, double meanL
         for (int c = 0; c < 3; ++c)
             out[3 * i + c] = encodeSrgb(image.rgb[3 * i + c] * exposure * scale);
     }
-    if (!stbi_write_png(path.c_str(), image.width, image.height, 3, out.data(), image.width * 3))
-        throw Error(cat(path, ": cannot write PNG"));
-    return exposure;
+    return {encodePng(image.width, image.height, 3, out), exposure};
+}
+
+std::string errorPng(const Image& image, const Image& reference, double scale)
+{
+    std::vector<unsigned char> out(image.pixels());
+    const double s = scale > 0.0 ? scale : 1.0;
+    for (std::size_t i = 0; i < image.pixels(); ++i) {
+        const double e = std::fabs(image.luminance(i) - reference.luminance(i)) / s;
+        const double g = e > 0.0 ? 1.0 + std::log10(e) / 3.0 : 0.0;
+        out[i] = static_cast<unsigned char>(std::lround(255.0 * std::clamp(g, 0.0, 1.0)));
+    }
+    return encodePng(image.width, image.height, 1, out);
 }
 
 }  // namespace fen

@@ -6,13 +6,22 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "io/image.h"
 
 namespace fen {
 
-// Returns the exposure multiplier used.
-double writePngPreview(const std::string& path, const Image& image, double meanLuminance,
-                       double exposure = 0.0);
+struct Preview {
+    std::string png;        // the encoded file
+    double exposure = 0.0;  // the multiplier used
+};
+Preview pngPreview(const Image& image, double meanLuminance, double exposure = 0.0);
+
+// An error map against a reference, 8-bit grey PNG: e = |Y - Y_ref| / scale per pixel, written as
+// 255 (1 + log10(e) / 3) clamped to [0, 255] -- black at e <= 10^-3, white at e >= 1. The scale is
+// the reference's mean luminance over the region the caller chooses, so dark regions do not blow
+// up. For looking at (scripts/compare.py colours it), never for measuring.
+std::string errorPng(const Image& image, const Image& reference, double scale);
 
 }  // namespace fen

@@ -88,6 +88,8 @@ std::vector<double> BatchStatistics::stdErrLuminance() const
 {
     const std::size_t px = sumY2_.size();
     std::vector<double> se(px, 0.0);
+    if (batches_ < 2)
+        return se;  // one batch: no spread to measure (an interrupted render); reported as unknown
     const double W = weight_, B = batches_;
     for (std::size_t p = 0; p < px; ++p) {
         const double meanY = luminance(sum_[3 * p], sum_[3 * p + 1], sum_[3 * p + 2]) / W;

@@ -2,7 +2,9 @@
 // (DESIGN.md §5). Every JSON key is documented in README.md ("Render output").
 #include "render/render_cmd.h"
 
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +16,7 @@
 
 #include "cl/device.h"
 #include "io/exr_io.h"
+#include "io/output_files.h"
 #include "io/png_preview.h"
 #include "render/camera_setup.h"
 #include "render/image_stats.h"
@@ -27,28 +30,49 @@ namespace fen {
 
 namespace {
 
+// A portal render warns when its complement paths carry more than this share of the light.
+constexpr double kUnreachedWarning = 0.01;
+
+// Ctrl-C or SIGTERM: the first asks the render to finish its batch in flight and write what it has;
+// a second one ends the process at once (the default action). Only async-signal-safe calls here.
+std::atomic<bool> gStop{false};
+
+extern "C" void onStopSignal(int sig)
+{
+    if (gStop.exchange(true)) {
+        std::signal(sig, SIG_DFL);
+        std::raise(sig);
+        return;
+    }
+    static const char msg[] =
+        "\nfenestra: interrupted: finishing the batch in flight and writing the image (again to quit now)\n";
+    const ssize_t ignored = ::write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)ignored;
+}
+
+// Installs the handlers for the render's lifetime.
+class StopSignals {
+public:
+    StopSignals()
+    {
+        gStop = false;
+        oldInt_ = std::signal(SIGINT, onStopSignal);
+        oldTerm_ = std::signal(SIGTERM, onStopSignal);
+    }
+    ~StopSignals()
+    {
+        std::signal(SIGINT, oldInt_);
+        std::signal(SIGTERM, oldTerm_);
+    }
+
+private:
+    void (*oldInt_)(int);
+    void (*oldTerm_)(int);
+};
+
 std::string withExtension(const std::string& exrPath, const std::string& ext)
 {
     return exrPath.substr(0, exrPath.size() - 4) + ext;
-}
-
-// Creates the output's folder and proves it writable before a long render, not after it.
-void prepareOutput(const std::string& exrPath)
-{
-    namespace fs = std::filesystem;
-    const fs::path dir = fs::path(exrPath).parent_path();
-    std::error_code ec;
-    if (!dir.empty())
-        fs::create_directories(dir, ec);
-    if (ec)
-        throw Error(cat("--out ", exrPath, ": cannot create folder ", dir.string(), ": ", ec.message()));
-    const std::string probe = exrPath + ".writable";
-    {
-        std::ofstream f(probe);
-        if (!f)
-            throw Error(cat("--out ", exrPath, ": cannot write there"));
-    }
-    fs::remove(probe, ec);
 }
 
 }  // namespace
@@ -59,6 +83,11 @@ EmissionSettings emissionSettings(const RenderOptions& opt)
     e.method = parseEmissionMethod(opt.method);
     e.overlap = parsePortalOverlap(opt.portalOverlap);
     e.portals = opt.portals;
+    if (opt.portalComplement >= 0.0) {
+        if (e.method != EmissionMethod::Portal)
+            throw Error("--portal-complement applies to --method portal");
+        e.portalComplement = opt.portalComplement;
+    }
     AdaptiveOptions& a = e.adaptive;
     a.base = parseEmissionMethod(opt.base);
     const bool adaptive = e.method == EmissionMethod::Adaptive;
@@ -118,7 +147,14 @@ int runRender(const RenderOptions& opt)
         throw Error("give either --paths or --time, not both");
     if (opt.timeSeconds < 0.0 || (opt.timeSeconds == 0.0 && opt.paths == 0))
         throw Error("--paths must be positive, or --time a positive number of seconds");
-    prepareOutput(opt.outPath);
+    // Every output's folder is created and proved writable, and no output is a folder, before a
+    // long render rather than after it.
+    const std::string pngPath = withExtension(opt.outPath, ".png");
+    const std::string jsonPath = withExtension(opt.outPath, ".json");
+    const std::string noisePath = withExtension(opt.outPath, ".noise.exr");
+    const std::string errorPath = withExtension(opt.outPath, ".error.png");
+    for (const std::string& p : {opt.outPath, pngPath, jsonPath, noisePath, errorPath})
+        checkOutputPath(p, "--out");
 
     const Scene scene = loadGltf(opt.scenePath);
     for (const auto& w : scene.warnings)
@@ -152,7 +188,35 @@ int runRender(const RenderOptions& opt)
     settings.poolSize = opt.poolSize;
     settings.progress = opt.progress < 0 ? isatty(STDERR_FILENO) != 0 : opt.progress > 0;
     settings.rois = {roi};
+    // Error against time, batch by batch (what `scripts/compare.py` charts): the ROI's mean, the
+    // noise estimate, and with a reference the RMSE and the mean's bias.
+    nlohmann::json progress = nlohmann::json::array();
+    const double referenceMean = reference ? roiStats(*reference, {}, nullptr, roi).meanLuminance_cd_m2 : 0.0;
+    settings.onBatch = [&](const BatchProgress& p) {
+        const Image img = p.stats->mean();
+        const RoiStats s = roiStats(img, p.stats->stdErrLuminance(), reference ? &*reference : nullptr, roi);
+        nlohmann::json e = {{"batches", p.batches},
+                            {"paths", p.paths},
+                            {"seconds", p.seconds},
+                            {"mean_luminance_cd_m2", s.meanLuminance_cd_m2}};
+        if (p.batches >= 2)
+            e["noise_std_err_cd_m2"] = s.noiseStdErr_cd_m2;
+        if (s.rmse_cd_m2) {
+            e["rmse_cd_m2"] = *s.rmse_cd_m2;
+            e["bias_cd_m2"] = s.meanLuminance_cd_m2 - referenceMean;
+        }
+        progress.push_back(e);
+    };
+    const StopSignals signals;
+    settings.stop = &gStop;
     Renderer renderer(ctx, scene, sky, camera, width, height, settings);
+    // Warned once the settings are known to be valid, so that an error stays one line.
+    if (settings.paths > 0 && settings.paths % static_cast<std::uint64_t>(settings.batches) != 0)
+        std::fprintf(stderr, "fenestra: warning: --paths %llu is not a multiple of the %d batches: %llu paths "
+                     "are traced (batches of %llu)\n",
+                     static_cast<unsigned long long>(settings.paths), settings.batches,
+                     static_cast<unsigned long long>(settings.paths / settings.batches * settings.batches),
+                     static_cast<unsigned long long>(settings.paths / settings.batches));
     const RenderResult r = renderer.render();
 
     for (float v : r.image.rgb)
@@ -160,16 +224,18 @@ int runRender(const RenderOptions& opt)
             throw Error("internal error: the image holds a non-finite value");
     const RoiStats st = roiStats(r.image, r.stdErrLuminance, reference ? &*reference : nullptr, roi);
 
-    const std::string pngPath = withExtension(opt.outPath, ".png");
-    const std::string jsonPath = withExtension(opt.outPath, ".json");
-    const std::string noisePath = withExtension(opt.outPath, ".noise.exr");
-    writeExr(opt.outPath, r.image);
     // Each pixel's standard error of luminance (from its batches), grey: the error without a reference.
     Image noise(width, height);
     for (std::size_t p = 0; p < noise.pixels(); ++p)
         noise.rgb[3 * p] = noise.rgb[3 * p + 1] = noise.rgb[3 * p + 2] = static_cast<float>(r.stdErrLuminance[p]);
-    writeExr(noisePath, noise);
-    const double exposure = writePngPreview(pngPath, r.image, st.meanLuminance_cd_m2, opt.exposure);
+    const Preview preview = pngPreview(r.image, st.meanLuminance_cd_m2, opt.exposure);
+    const double exposure = preview.exposure;
+    OutputFiles outputs;
+    outputs.add(opt.outPath, encodeExr(r.image));
+    outputs.add(noisePath, encodeExr(noise));
+    outputs.add(pngPath, preview.png);
+    if (reference)
+        outputs.add(errorPath, errorPng(r.image, *reference, referenceMean));
     const double totalSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -184,6 +250,7 @@ int runRender(const RenderOptions& opt)
     j["max_bounces"] = opt.maxBounces;
     j["bvh_layout"] = cat("bvh", r.bvhWidth);
     j["paths"] = r.paths;
+    j["interrupted"] = r.interrupted;
     j["batches"] = r.batches;
     j["paths_per_batch"] = r.pathsPerBatch;
     j["camera_samples_per_pixel"] = static_cast<std::uint64_t>(r.batches) * opt.cameraSpp;
@@ -203,7 +270,8 @@ int runRender(const RenderOptions& opt)
     j["roi"] = {roi.x0, roi.y0, roi.x1, roi.y1};
     j["mean_luminance_cd_m2"] = st.meanLuminance_cd_m2;
     j["rms_luminance_cd_m2"] = st.rmsLuminance_cd_m2;
-    j["noise_std_err_cd_m2"] = st.noiseStdErr_cd_m2;
+    // One batch (an interrupted render) has no spread to estimate the noise from.
+    j["noise_std_err_cd_m2"] = r.batches >= 2 ? nlohmann::json(st.noiseStdErr_cd_m2) : nlohmann::json(nullptr);
     // The ROI mean's own standard error: batches are independent, so the spread of their ROI
     // means measures it directly (pixels within a batch are correlated through shared paths).
     j["mean_std_err_cd_m2"] = r.roiMeanStdErr(0);
@@ -211,23 +279,27 @@ int runRender(const RenderOptions& opt)
         j["reference"] = opt.referencePath;
         j["rmse_cd_m2"] = *st.rmse_cd_m2;
         j["rel_mse"] = *st.relMse;
+        j["bias_cd_m2"] = st.meanLuminance_cd_m2 - referenceMean;
+        j["reference_mean_luminance_cd_m2"] = referenceMean;
     }
     j["emission"] = r.emission;
+    j["progress"] = progress;
     j["counters"] = {{"bad_contributions", n.badContributions},
                      {"fixed_point_overflows", n.overflows},
                      {"stats_overflows", n.statsOverflows},
                      {"max_bounce_cuts", n.maxBounceCuts},
+                     // the flux the cuts removed, over the flux emitted: the bias of the cap
+                     {"max_bounce_flux_share", r.maxBounceFluxShare()},
+                     {"max_bounce_flux_lm", r.paths > 0 ? n.cutFlux / static_cast<double>(r.paths) : 0.0},
                      {"camera_glass_cuts", n.cameraGlassCuts}};
     for (const auto& [name, e] : r.kernels)
         j["kernels"][name] = {{"launches", e.launches}, {"device_seconds", e.deviceSeconds}};
     j["png_exposure"] = exposure;
     j["outputs"] = {{"exr", opt.outPath}, {"png", pngPath}, {"json", jsonPath}, {"noise_exr", noisePath}};
-    {
-        std::ofstream f(jsonPath);
-        if (!f)
-            throw Error(cat(jsonPath, ": cannot write"));
-        f << j.dump(2) << "\n";
-    }
+    if (reference)
+        j["outputs"]["error_png"] = errorPath;
+    outputs.add(jsonPath, j.dump(2) + "\n");  // last: it names the others
+    outputs.commit();
 
     std::printf("%s: %d x %d, %llu paths in %d batches, %.1f s (%.2f Mrays/s)\n", opt.outPath.c_str(),
                 width, height, static_cast<unsigned long long>(r.paths), r.batches, r.renderSeconds,
@@ -238,12 +310,29 @@ int runRender(const RenderOptions& opt)
     if (st.rmse_cd_m2)
         std::printf(", RMSE %.4g, relMSE %.4g", *st.rmse_cd_m2, *st.relMse);
     std::printf("\nalso wrote %s, %s and %s\n", pngPath.c_str(), jsonPath.c_str(), noisePath.c_str());
+    // Portal emission's blind spot, measured by its complement paths (emission/portal_strategy.h).
+    if (r.emission.contains("unreached") && r.emission["unreached"].is_object()) {
+        const double share = r.emission["unreached"]["share"], se = r.emission["unreached"]["std_err"];
+        if (share > kUnreachedWarning && share > 2.0 * se)
+            std::fprintf(stderr,
+                         "fenestra: warning: %.1f %% (+- %.1f) of the light reaching the camera does not pass "
+                         "through the marked portals (reflected from outside, or an unmarked opening): "
+                         "the portal image misses it; --method adaptive does not\n",
+                         100.0 * share, 100.0 * se);
+    }
     if (n.badContributions || n.overflows)
         std::fprintf(stderr,
                      "fenestra: warning: %llu non-finite contributions and %llu fixed-point "
                      "overflows were dropped\n",
                      static_cast<unsigned long long>(n.badContributions),
                      static_cast<unsigned long long>(n.overflows));
+    if (r.interrupted) {
+        // The files are complete and valid for the paths traced; the status says they are fewer
+        // than asked for (the shell's convention for a Ctrl-C).
+        std::fprintf(stderr, "fenestra: interrupted: the outputs hold the %d batches finished (%llu paths)\n",
+                     r.batches, static_cast<unsigned long long>(r.paths));
+        return 130;
+    }
     return 0;
 }
 

@@ -15,12 +15,13 @@ struct RenderOptions {
     std::string camera;
     std::uint32_t seed = 1;
     std::string device;
-    int maxBounces = 64;
+    int maxBounces = 1024;
     std::string roi;                // "x0,y0,x1,y1"
     std::string referencePath;
     std::string method = "uniform";
     std::string portals;            // --portals NAME,NAME
     std::string portalOverlap = "reject";
+    double portalComplement = -1.0; // -1: the default of EmissionSettings
     std::string base = "uniform";   // --base (adaptive)
     std::string adaptiveEstimate;   // --adaptive-estimate pooled|squares
     int adaptiveInitialDepth = -1;  // -1: the default of AdaptiveOptions (emission/strategy.h)
@@ -42,6 +43,8 @@ struct RenderOptions {
     int progress = -1;              // -1: when stderr is a terminal; 0 off; 1 on
 };
 
+// Returns the exit status: 0, or 130 when a signal stopped the render early (its outputs are
+// written, for the batches finished).
 int runRender(const RenderOptions& opt);
 
 struct EmissionSettings;

@@ -152,6 +152,59 @@ TEST(CliRender, WritesExrPngAndJson)
     EXPECT_EQ(j2["rel_mse"].get<double>(), 0.0);
 }
 
+TEST(CliRender, AFullDiskLosesNothing)
+{
+    // A write that fails (FEN_FAIL_WRITE injects ENOSPC into the outputs whose name holds it)
+    // fails the render with one line naming the file, and leaves the previous render's outputs
+    // whole and no temporaries behind.
+    namespace fs = std::filesystem;
+    const std::string dir = test::tempDir("cli-render-full-disk");
+    const std::string scene = plateScene().write(dir + "/plate.gltf");
+    const std::string args = "render " + scene + " --out " + dir + "/out/r.exr --paths 200000 --width 40 --no-progress";
+    ASSERT_EQ(run(args).status, 0);
+    const std::vector<std::string> files = {"/out/r.exr", "/out/r.noise.exr", "/out/r.png", "/out/r.json"};
+    std::vector<std::string> before;
+    for (const auto& f : files)
+        before.push_back(slurp(dir + f));
+    for (const char* failing : {"r.exr", "r.noise.exr", "r.png", "r.json"}) {
+        expectError(run(args + " --seed 2", std::string("FEN_FAIL_WRITE=") + failing), 1, failing);
+        for (std::size_t k = 0; k < files.size(); ++k)
+            EXPECT_EQ(slurp(dir + files[k]), before[k]) << files[k] << " changed when " << failing << " failed";
+        std::size_t entries = 0;
+        for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir + "/out"))
+            ++entries;
+        EXPECT_EQ(entries, files.size()) << "a temporary was left behind when " << failing << " failed";
+    }
+    // Without the fault the same render replaces them.
+    ASSERT_EQ(run(args + " --seed 2").status, 0);
+    EXPECT_NE(slurp(dir + "/out/r.exr"), before[0]);
+    // An output folder that cannot exist is refused before any rendering.
+    expectError(run("render " + scene + " --out " + scene + "/x.exr --paths 200000 --no-progress"), 1, scene);
+}
+
+TEST(CliRender, AnInterruptedRenderWritesWhatItHas)
+{
+    // SIGTERM (like Ctrl-C's SIGINT) lets the batch in flight finish, then writes a valid image
+    // of the batches done, says so in the JSON, and exits 130. 1024 batches of ~1M paths on a
+    // plate take minutes, so the signal, 4 s in, arrives mid-render.
+    const std::string dir = test::tempDir("cli-render-interrupt");
+    const std::string scene = plateScene().write(dir + "/plate.gltf");
+    const std::string cmd = std::string(FENESTRA_BIN) + " render " + scene + " --out " + dir +
+                            "/r.exr --paths 1073741824 --batches 1024 --width 40 --no-progress 2>" + dir +
+                            "/err & pid=$!; sleep 4; kill -TERM $pid; wait $pid; echo $? >" + dir + "/status";
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
+    EXPECT_EQ(std::stoi(slurp(dir + "/status")), 130) << slurp(dir + "/err");
+    EXPECT_NE(slurp(dir + "/err").find("fenestra: interrupted"), std::string::npos) << slurp(dir + "/err");
+    const auto j = nlohmann::json::parse(slurp(dir + "/r.json"));
+    EXPECT_TRUE(j["interrupted"].get<bool>());
+    const int batches = j["batches"];
+    EXPECT_GE(batches, 1);
+    EXPECT_LT(batches, 1024);
+    EXPECT_EQ(j["paths"].get<std::uint64_t>(), j["paths_per_batch"].get<std::uint64_t>() * batches);
+    EXPECT_GT(j["mean_luminance_cd_m2"].get<double>(), 0.0);
+    EXPECT_EQ(j["counters"]["bad_contributions"], 0);
+}
+
 TEST(CliRender, TimeBudgetAndPortalsFromTheCommandLine)
 {
     const std::string dir = test::tempDir("cli-render-time");
@@ -266,9 +319,50 @@ TEST(CliRender, AdaptiveReportsItsGrid)
         EXPECT_GT(e["memory_bytes"].get<std::uint64_t>(), 0u);
         EXPECT_EQ(e["batch_weights"].size(), j["batches"].get<std::size_t>());
         EXPECT_EQ(j["counters"]["stats_overflows"], 0);
-        if (std::string(base) == "portal")
+        if (std::string(base) == "portal") {
             EXPECT_EQ(e["portal_nodes"], nlohmann::json({"window", "door_frame"}));
+        }
     }
+}
+
+TEST(CliRender, PortalsWarnAboutTheLightTheyMiss)
+{
+    // scenes/room.gltf: the sunlit ground outside sends light in through the window that no path
+    // starting on the window carries; the complement paths measure it and the render says so.
+    const std::string dir = test::tempDir("cli-render-unreached");
+    const CliRun r = run("render " + std::string(FEN_SCENES_DIR) + "/room.gltf --out " + dir +
+                         "/p.exr --method portal --paths 3000000 --width 64 --no-progress");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("does not pass through the marked portals"), std::string::npos) << r.err;
+    const auto j = nlohmann::json::parse(slurp(dir + "/p.json"));
+    EXPECT_GT(j["emission"]["unreached"]["share"].get<double>(), 0.01);
+    // --portal-complement 0: the paper's method alone, nothing measured, no warning.
+    const CliRun q = run("render " + std::string(FEN_SCENES_DIR) + "/room.gltf --out " + dir +
+                         "/q.exr --method portal --portal-complement 0 --paths 300000 --width 64 --no-progress");
+    ASSERT_EQ(q.status, 0) << q.err;
+    EXPECT_EQ(q.err.find("warning"), std::string::npos) << q.err;
+    EXPECT_TRUE(nlohmann::json::parse(slurp(dir + "/q.json"))["emission"]["unreached"].is_null());
+}
+
+TEST(CliCompare, ChartsAndTableFromEqualTimeRenders)
+{
+    // scripts/compare.py: equal-time renders against a reference, CSV, summary and charts (the
+    // install step of matplotlib is scripts/setup.sh's).
+    const std::string dir = test::tempDir("cli-compare");
+    const std::string scene = std::string(FEN_SCENES_DIR) + "/room.gltf";
+    const std::string cmd = "cd " + std::string(FEN_SOURCE_DIR) + " && /usr/bin/python3 scripts/compare.py " + scene +
+                            " --methods uniform,portal,adaptive --time 1.5 --reference-time 3 --width 48 --out " + dir +
+                            " --fenestra " + FENESTRA_BIN + " > " + dir + "/log 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir + "/log");
+    for (const char* f : {"/compare.csv", "/summary.md", "/summary.json", "/error_vs_time.png", "/efficiency.png",
+                          "/strip.png", "/adaptive.error.png"})
+        EXPECT_FALSE(slurp(dir + f).empty()) << f;
+    const auto j = nlohmann::json::parse(slurp(dir + "/summary.json"));
+    ASSERT_EQ(j["methods"].size(), 3u);
+    for (const auto& m : j["methods"])
+        for (const char* k : {"method", "paths", "mean_cd_m2", "bias_cd_m2", "biased", "rmse_cd_m2", "relative_efficiency"})
+            EXPECT_TRUE(m.contains(k)) << k;
+    EXPECT_NE(slurp(dir + "/compare.csv").find("method,batches,paths,seconds"), std::string::npos);
 }
 
 TEST(CliRender, AdaptiveBadOptionsAreOneLine)

@@ -1,0 +1,212 @@
+#!/usr/bin/env python3
+"""compare.py — emission methods against each other on one scene, for equal wall time: error along the
+way against a reference, a CSV, and charts (DESIGN.md §5: every claim charted as error against time).
+
+    python3 scripts/compare.py SCENE.gltf --methods uniform,portal,adaptive --time 60 [--reference R.exr]
+                               [--roi x0,y0,x1,y1] [--width W] [--seed S] [--out DIR] [--camera NAME]
+                               [--reference-method adaptive] [--reference-time SECONDS]
+
+A method is METHOD[/BASE][@PORTALS]: `portal@gap` is portal emission through the node `gap`,
+`adaptive/portal` adaptive emission over the scene's portals, `adaptive/portal@gap` over the gap.
+
+Without --reference, a long render of an unbiased method (--reference-method, default adaptive,
+--reference-time, default 10 x --time, seed 1000) is made once and cached in out/compare/cache/,
+keyed by the scene's bytes and the settings.
+
+Writes to --out (default out/compare/<scene name>/):
+  compare.csv          method, batches, paths, seconds, mean, noise, rmse, bias per batch
+  summary.md, .json    per method: paths, mean ± s.e., bias against the reference (flagged when it
+                       exceeds 4 combined standard errors), noise, RMSE, efficiency 1 / (RMSE² s)
+  error_vs_time.png    RMSE (solid) and the noise estimate (dashed) against seconds, log-log
+  efficiency.png       efficiency, the best unbiased method = 1; biased methods hatched
+  strip.png            each method's image (preview) and its error map against the reference
+
+Needs matplotlib and numpy (Debian: python3-matplotlib, installed by scripts/setup.sh).
+"""
+import argparse
+import csv
+import hashlib
+import json
+import math
+import os
+import subprocess
+import sys
+
+
+def parse_method(spec):
+    """METHOD[/BASE][@PORTALS] -> (label, fenestra arguments)."""
+    rest, _, portals = spec.partition("@")
+    method, _, base = rest.partition("/")
+    if method not in ("uniform", "portal", "adaptive"):
+        sys.exit("compare.py: --methods: '%s': expected uniform, portal or adaptive" % spec)
+    args = ["--method", method]
+    if base:
+        if method != "adaptive" or base not in ("uniform", "portal"):
+            sys.exit("compare.py: --methods: '%s': a base is adaptive/uniform or adaptive/portal" % spec)
+        args += ["--base", base]
+    if portals:
+        args += ["--portals", portals]
+    return spec, args
+
+
+def run(cmd):
+    print("$", " ".join(cmd), flush=True)
+    r = subprocess.run(cmd)
+    if r.returncode != 0:
+        sys.exit("compare.py: the render failed (exit %d)" % r.returncode)
+
+
+def load(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("scene")
+    ap.add_argument("--methods", default="uniform,portal,adaptive")
+    ap.add_argument("--time", type=float, required=True, help="seconds per method")
+    ap.add_argument("--reference")
+    ap.add_argument("--reference-method", default="adaptive")
+    ap.add_argument("--reference-time", type=float)
+    ap.add_argument("--roi", default="")
+    ap.add_argument("--width", type=int, default=0)
+    ap.add_argument("--camera", default="")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--out")
+    ap.add_argument("--fenestra", default="build/fenestra")
+    a = ap.parse_args()
+
+    name = os.path.splitext(os.path.basename(a.scene))[0]
+    out = a.out or os.path.join("out", "compare", name)
+    os.makedirs(out, exist_ok=True)
+    common = ["--no-progress"]
+    if a.width:
+        common += ["--width", str(a.width)]
+    if a.camera:
+        common += ["--camera", a.camera]
+    if a.roi:
+        common += ["--roi", a.roi]
+
+    # The reference: given, or made once and cached.
+    ref = a.reference
+    if not ref:
+        ref_time = a.reference_time or 10.0 * a.time
+        with open(a.scene, "rb") as f:
+            key = hashlib.sha256(f.read() + json.dumps([common, a.reference_method, ref_time]).encode()).hexdigest()[:16]
+        cache = os.path.join("out", "compare", "cache")
+        os.makedirs(cache, exist_ok=True)
+        ref = os.path.join(cache, "%s-%s.exr" % (name, key))
+        if not os.path.exists(ref):
+            _, margs = parse_method(a.reference_method)
+            run([a.fenestra, "render", a.scene, "--out", ref, "--time", str(ref_time), "--seed", "1000"]
+                + margs + common)
+    ref_json = os.path.splitext(ref)[0] + ".json"
+    ref_se = load(ref_json)["mean_std_err_cd_m2"] if os.path.exists(ref_json) else 0.0
+
+    # The methods, equal time.
+    results = []
+    for spec in [m for m in a.methods.split(",") if m]:
+        label, margs = parse_method(spec)
+        path = os.path.join(out, label.replace("/", "_over_").replace("@", "_at_") + ".exr")
+        run([a.fenestra, "render", a.scene, "--out", path, "--time", str(a.time), "--seed", str(a.seed),
+             "--reference", ref] + margs + common)
+        results.append((label, path, load(os.path.splitext(path)[0] + ".json")))
+
+    with open(os.path.join(out, "compare.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["method", "batches", "paths", "seconds", "mean_cd_m2", "noise_cd_m2", "rmse_cd_m2", "bias_cd_m2"])
+        for label, _, j in results:
+            for p in j["progress"]:
+                w.writerow([label, p["batches"], p["paths"], "%.4f" % p["seconds"], "%.6g" % p["mean_luminance_cd_m2"],
+                            "%.6g" % p["noise_std_err_cd_m2"] if "noise_std_err_cd_m2" in p else "",
+                            "%.6g" % p["rmse_cd_m2"], "%.6g" % p["bias_cd_m2"]])
+
+    # Summary: bias flagged beyond 4 combined standard errors; efficiency against the best unbiased.
+    summary = []
+    for label, path, j in results:
+        se = math.hypot(j["mean_std_err_cd_m2"], ref_se)
+        seconds = j["seconds"]["render"] + j["seconds"]["calibration"]
+        summary.append({
+            "method": label, "paths": j["paths"], "seconds": seconds,
+            "mean_cd_m2": j["mean_luminance_cd_m2"], "mean_std_err_cd_m2": j["mean_std_err_cd_m2"],
+            "bias_cd_m2": j["bias_cd_m2"], "bias_sigmas": j["bias_cd_m2"] / se if se > 0 else 0.0,
+            "biased": abs(j["bias_cd_m2"]) > 4.0 * se,
+            "noise_cd_m2": j["noise_std_err_cd_m2"], "rmse_cd_m2": j["rmse_cd_m2"],
+            "efficiency": 1.0 / (j["rmse_cd_m2"] ** 2 * seconds),
+            "png": os.path.splitext(path)[0] + ".png", "error_png": os.path.splitext(path)[0] + ".error.png"})
+    unbiased = [s["efficiency"] for s in summary if not s["biased"]] or [s["efficiency"] for s in summary]
+    best = max(unbiased)
+    for s in summary:
+        s["relative_efficiency"] = s["efficiency"] / best
+    with open(os.path.join(out, "summary.json"), "w") as f:
+        json.dump({"scene": a.scene, "reference": ref, "reference_mean_std_err_cd_m2": ref_se, "roi": a.roi,
+                   "seconds_per_method": a.time, "methods": summary}, f, indent=1)
+    lines = ["| method | paths | mean ± s.e. (cd/m²) | bias vs reference | noise | RMSE | efficiency (best = 1) |",
+             "|---|---|---|---|---|---|---|"]
+    for s in summary:
+        lines.append("| %s | %.3gM | %.4g ± %.2g | %+.3g (%+.1f σ)%s | %.3g | %.3g | %.2f%s |" % (
+            s["method"], s["paths"] / 1e6, s["mean_cd_m2"], s["mean_std_err_cd_m2"], s["bias_cd_m2"],
+            s["bias_sigmas"], " **biased**" if s["biased"] else "", s["noise_cd_m2"], s["rmse_cd_m2"],
+            s["relative_efficiency"], " (biased)" if s["biased"] else ""))
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    charts(out, results, summary)
+
+
+def charts(out, results, summary):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import matplotlib.image as mpimg
+
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for k, ((label, _, j), s) in enumerate(zip(results, summary)):
+        c = colours[k % len(colours)]
+        t = [p["seconds"] for p in j["progress"]]
+        ax.loglog(t, [p["rmse_cd_m2"] for p in j["progress"]], "-o", color=c, ms=3,
+                  label=label + (" (biased)" if s["biased"] else ""))
+        tn = [p["seconds"] for p in j["progress"] if "noise_std_err_cd_m2" in p]
+        ax.loglog(tn, [p["noise_std_err_cd_m2"] for p in j["progress"] if "noise_std_err_cd_m2" in p], "--",
+                  color=c, alpha=0.6)
+    ax.set_xlabel("seconds")
+    ax.set_ylabel("error (cd/m²): RMSE vs reference —, noise estimate - -")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "error_vs_time.png"), dpi=100)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(7, 3.5))
+    bars = ax.bar([s["method"] for s in summary], [s["relative_efficiency"] for s in summary],
+                  color=[colours[k % len(colours)] for k in range(len(summary))])
+    for b, s in zip(bars, summary):
+        if s["biased"]:
+            b.set_hatch("//")
+            b.set_alpha(0.5)
+            ax.annotate("biased", (b.get_x() + b.get_width() / 2, b.get_height()), ha="center", va="bottom")
+    ax.set_ylabel("efficiency 1/(RMSE² × s), best unbiased = 1")
+    ax.set_yscale("log")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "efficiency.png"), dpi=100)
+    plt.close(fig)
+
+    n = len(summary)
+    fig, axes = plt.subplots(2, n, figsize=(3.2 * n, 5.0), squeeze=False)
+    for k, s in enumerate(summary):
+        axes[0][k].imshow(mpimg.imread(s["png"]))
+        axes[0][k].set_title(s["method"] + ("\n(biased)" if s["biased"] else ""), fontsize=9)
+        if os.path.exists(s["error_png"]):
+            axes[1][k].imshow(mpimg.imread(s["error_png"]), cmap="magma", vmin=0.0, vmax=1.0)
+        axes[1][k].set_title("|error| / mean: 1e-3 .. 1", fontsize=8)
+        for r in range(2):
+            axes[r][k].axis("off")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "strip.png"), dpi=100)
+    plt.close(fig)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
