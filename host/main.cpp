@@ -144,6 +144,12 @@ int main(int argc, char** argv)
                           "Camera-pass samples per pixel per batch, for the sky seen directly (default 1)");
     renderCmd->add_option("--pool", render.poolSize, "Path slots on the device (default: 2^16 CPU, 2^21 GPU)");
     renderCmd->add_option("--exposure", render.exposure, "PNG preview exposure (default: ROI mean to mid-grey)");
+    renderCmd->add_option("--checkpoint", render.checkpointPath,
+                          "Save the render's state to this file now and then, and when interrupted");
+    renderCmd->add_option("--checkpoint-every", render.checkpointEvery,
+                          "How often: N min, N s or N batches (default 10min)");
+    renderCmd->add_option("--resume", render.resumePath,
+                          "Continue the render saved in this checkpoint (same scene and options)");
     renderCmd->add_flag("--progress", progressOn, "Show progress even when stderr is not a terminal");
     renderCmd->add_flag("--no-progress", progressOff, "Never show progress");
 

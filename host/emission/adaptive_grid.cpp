@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/state_io.h"
 #include "util/error.h"
 
 namespace fen {
@@ -266,6 +267,73 @@ std::uint64_t AdaptiveGrid::checksum() const
         mix(&c.prob, sizeof c.prob);
     }
     return h;
+}
+
+void AdaptiveGrid::save(StateWriter& w) const
+{
+    std::vector<std::uint64_t> ids;
+    std::vector<double> reals;
+    for (const GridCell& c : cells_) {
+        for (std::uint32_t v : {c.sun ? 1u : 0u, c.region, c.depth, c.ix, c.iy, c.skyDepth, c.is, c.it})
+            ids.push_back(v);
+        reals.push_back(c.base);
+        reals.push_back(c.prob);
+        for (const GridCell::Stats& s : c.part)
+            for (double v : {s.sum, s.sumSq, s.paths, s.connections})
+                reals.push_back(v);
+    }
+    w.u64("grid.cells", cells_.size());
+    w.u64s("grid.cell_ids", ids);
+    w.f64s("grid.cell_values", reals);
+    w.f64s("grid.learned", learned_);
+    w.f64s("grid.prior", {priorFirst_, priorRate_, priorSecond_, seen_ ? 1.0 : 0.0, totalPaths_, totalConnections_});
+}
+
+void AdaptiveGrid::load(StateReader& r, std::uint32_t regions)
+{
+    constexpr std::size_t kIds = 8, kReals = 2 + 16 * 4;
+    const std::size_t n = r.u64("grid.cells", learning_.maxCells);
+    if (n == 0)
+        r.fail("grid.cells", "an empty grid");
+    const std::vector<std::uint64_t> ids = r.u64s("grid.cell_ids", n * kIds);
+    const std::vector<double> reals = r.f64s("grid.cell_values", n * kReals, true);
+    if (ids.size() != n * kIds)
+        r.fail("grid.cell_ids", cat(ids.size(), " values where ", n * kIds, " belong"));
+    std::vector<double> learned = r.f64s("grid.learned", n, true);
+    const std::vector<double> prior = r.f64s("grid.prior", 6, true);
+    std::vector<GridCell> cells(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        GridCell& c = cells[i];
+        const std::uint64_t* id = ids.data() + kIds * i;
+        const bool fits = id[0] <= 1 && id[1] < regions && id[2] <= learning_.maxDepth &&
+                          id[3] >> id[2] == 0 && id[4] >> id[2] == 0 && id[5] <= learning_.maxSkyDepth &&
+                          id[6] >> id[5] == 0 && id[7] >> id[5] == 0;
+        if (!fits)
+            r.fail("grid.cell_ids", cat("cell ", i, " lies outside the grid's limits"));
+        c.sun = id[0] == 1;
+        c.region = static_cast<std::uint32_t>(id[1]);
+        c.depth = static_cast<std::uint32_t>(id[2]);
+        c.ix = static_cast<std::uint32_t>(id[3]);
+        c.iy = static_cast<std::uint32_t>(id[4]);
+        c.skyDepth = static_cast<std::uint32_t>(id[5]);
+        c.is = static_cast<std::uint32_t>(id[6]);
+        c.it = static_cast<std::uint32_t>(id[7]);
+        const double* v = reals.data() + kReals * i;
+        c.base = v[0];
+        c.prob = v[1];
+        for (int q = 0; q < 16; ++q)
+            c.part[q] = {v[2 + 4 * q], v[3 + 4 * q], v[4 + 4 * q], v[5 + 4 * q]};
+        if (!(c.base >= 0.0 && c.prob >= 0.0 && c.prob <= 1.0) || (c.base > 0.0 && !(c.prob > 0.0)))
+            r.fail("grid.cell_values", cat("cell ", i, " has no valid probability"));
+    }
+    cells_ = std::move(cells);
+    learned_ = std::move(learned);
+    priorFirst_ = prior[0];
+    priorRate_ = prior[1];
+    priorSecond_ = prior[2];
+    seen_ = prior[3] != 0.0;
+    totalPaths_ = prior[4];
+    totalConnections_ = prior[5];
 }
 
 std::uint32_t AdaptiveGrid::deepest() const

@@ -51,6 +51,9 @@
 
 namespace fen {
 
+class StateReader;
+class StateWriter;
+
 struct GridCell {
     bool sun = false;          // directions: the sun's cone, else the sky box below
     std::uint32_t region = 0;  // 0: the emission disk; 1 + g: portal plane g
@@ -119,6 +122,10 @@ public:
     double connections() const { return totalConnections_; }
     std::uint32_t deepest() const;
     std::uint32_t deepestSky() const;
+    // Everything the grid has learned, for a checkpoint (render/checkpoint.h); load() checks what
+    // it reads against the learning limits and `regions` (fen::Error naming the key).
+    void save(StateWriter& w) const;
+    void load(StateReader& r, std::uint32_t regions);
 
 private:
     // <sum Lambda^2> of statistics s with priorPaths pseudo-paths of the prior.

@@ -15,6 +15,7 @@
 #include "emission/adaptive_grid.h"
 #include "emission/portal_planes.h"
 #include "trace/device_bvh.h"
+#include "io/state_io.h"
 #include "util/error.h"
 
 namespace fen {
@@ -193,6 +194,32 @@ public:
         passPaths_ = 0;
         passSize_ = std::min<std::uint64_t>(passSize_ * 2, std::uint64_t{1} << 62);
         learnSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+
+    void saveState(StateWriter& w) const override
+    {
+        grid_->save(w);
+        w.u64("adaptive.pass_size", passSize_);
+        w.u64("adaptive.passes", static_cast<std::uint64_t>(passes_));
+        w.f64s("adaptive.weights", {lastBatchWeight_, learnSeconds_});
+        w.f64s("adaptive.batch_weights", batchWeights_);
+    }
+    void loadState(StateReader& r) override
+    {
+        // Between batches: no pass is half done, and the statistics on the device are cleared.
+        grid_->load(r, static_cast<std::uint32_t>(regionArea_.size()));
+        passSize_ = r.u64("adaptive.pass_size", std::uint64_t{1} << 62);
+        if (passSize_ == 0)
+            r.fail("adaptive.pass_size", "zero");
+        passes_ = static_cast<int>(r.u64("adaptive.passes", 1u << 30));
+        const std::vector<double> w = r.f64s("adaptive.weights", 2, true);
+        lastBatchWeight_ = w[0];
+        learnSeconds_ = w[1];
+        batchWeights_ = r.f64s("adaptive.batch_weights", 1u << 20);
+        passPaths_ = 0;
+        batchPasses_.clear();
+        ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, grid_->cells().size() * FEN_CELL_PARTS * FEN_CELL_STATS_WORDS * 8);
+        upload();
     }
 
     const AdaptiveGrid& grid() const override { return *grid_; }

@@ -6,6 +6,7 @@
 
 #include "cl/launch.h"
 #include "trace/device_bvh.h"
+#include "io/state_io.h"
 #include "util/error.h"
 
 namespace fen {
@@ -93,6 +94,8 @@ public:
         unreached_.push_back(sum[0] + sum[1] > 0.0 ? sum[1] / (sum[0] + sum[1]) : 0.0);
         q.enqueueFillBuffer(stats_, cl_ulong(0), 0, 2 * FEN_CELL_STATS_WORDS * 8);
     }
+    void saveState(StateWriter& w) const override { w.f64s("portal.unreached", unreached_); }
+    void loadState(StateReader& r) override { unreached_ = r.f64s("portal.unreached", 1u << 20); }
     nlohmann::json report() const override
     {
         return {{"portal_nodes", pe_.portals.nodes},

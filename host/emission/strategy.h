@@ -35,6 +35,9 @@
 
 namespace fen {
 
+class StateReader;
+class StateWriter;
+
 enum class EmissionMethod { Uniform, Portal, Adaptive };
 EmissionMethod parseEmissionMethod(const std::string& s);  // uniform | portal | adaptive
 std::string methodName(EmissionMethod m);
@@ -102,6 +105,11 @@ public:
     // removes is reported against it.
     virtual double emittedFluxPerPath() const = 0;
     virtual nlohmann::json report() const = 0;
+    // What the strategy has learned and recorded, between batches (when no statistics are on the
+    // device), for a checkpoint; loadState() restores it exactly, so that a resumed render is
+    // bit-identical (render/checkpoint.h).
+    virtual void saveState(StateWriter& w) const { (void)w; }
+    virtual void loadState(StateReader& r) { (void)r; }
 };
 
 std::unique_ptr<EmissionStrategy> makeEmissionStrategy(const EmissionSettings& settings,

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/state_io.h"
+
 namespace fen {
 
 namespace {
@@ -97,6 +99,32 @@ std::vector<double> BatchStatistics::stdErrLuminance() const
         se[p] = std::sqrt(var / W);
     }
     return se;
+}
+
+void BatchStatistics::save(StateWriter& w) const
+{
+    w.u64("film.batches", static_cast<std::uint64_t>(batches_));
+    w.f64("film.weight", weight_);
+    w.f64s("film.weights", weights_);
+    w.f64s("film.sum", sum_);
+    w.f64s("film.sum_y2", sumY2_);
+    w.u64("film.rois", rois_.size());
+    for (const auto& m : roiMeans_)
+        w.f64s("film.roi_means", m);
+}
+
+void BatchStatistics::load(StateReader& r)
+{
+    const std::size_t batches = r.u64("film.batches", 1u << 20);
+    weight_ = r.f64("film.weight");
+    weights_ = r.f64s("film.weights", batches, true);
+    sum_ = r.f64s("film.sum", sum_.size(), true);
+    sumY2_ = r.f64s("film.sum_y2", sumY2_.size(), true);
+    if (r.u64("film.rois") != rois_.size())
+        r.fail("film.rois", "made with other regions (--roi)");
+    for (auto& m : roiMeans_)
+        m = r.f64s("film.roi_means", batches, true);
+    batches_ = static_cast<int>(batches);
 }
 
 }  // namespace fen

@@ -51,6 +51,9 @@ private:
     cl::Buffer accum_, camera_;
 };
 
+class StateReader;
+class StateWriter;
+
 // Batch images in; mean image, per-pixel standard error of luminance and ROI batch means out.
 class BatchStatistics {
 public:
@@ -62,6 +65,9 @@ public:
     // roiBatchMeans()[k][b]: mean luminance of ROI k in batch b; weights()[b]: batch b's weight.
     const std::vector<std::vector<double>>& roiBatchMeans() const { return roiMeans_; }
     const std::vector<double>& weights() const { return weights_; }
+    // The sums so far, exactly (render/checkpoint.h); load() requires the same image and ROIs.
+    void save(StateWriter& w) const;
+    void load(StateReader& r);
 
 private:
     int width_, height_;

@@ -6,8 +6,10 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <unistd.h>
@@ -137,6 +139,31 @@ EmissionSettings emissionSettings(const RenderOptions& opt)
     return e;
 }
 
+// --checkpoint-every: "10min", "30 s", "4 batches" (units: min, m, s, batches, b).
+void parseCheckpointEvery(const std::string& text, RenderSettings* s)
+{
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+        v = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    std::string unit = text.substr(used);
+    unit.erase(0, unit.find_first_not_of(' '));
+    const bool ok = used > 0 && std::isfinite(v) && v > 0.0;
+    if (ok && (unit == "min" || unit == "m")) {
+        s->checkpointSeconds = 60.0 * v;
+    } else if (ok && unit == "s") {
+        s->checkpointSeconds = v;
+    } else if (ok && (unit == "batches" || unit == "b" || unit == "batch") && v == std::floor(v) && v <= 1024.0) {
+        s->checkpointBatches = static_cast<int>(v);
+    } else {
+        throw Error(cat("--checkpoint-every '", printable(text, 40),
+                        "': give a positive number and a unit: 10min, 30s or 4batches"));
+    }
+}
+
 int runRender(const RenderOptions& opt)
 {
     const auto t0 = std::chrono::steady_clock::now();
@@ -155,6 +182,10 @@ int runRender(const RenderOptions& opt)
     const std::string errorPath = withExtension(opt.outPath, ".error.png");
     for (const std::string& p : {opt.outPath, pngPath, jsonPath, noisePath, errorPath})
         checkOutputPath(p, "--out");
+    if (!opt.checkpointPath.empty())
+        checkOutputPath(opt.checkpointPath, "--checkpoint");
+    if (!opt.resumePath.empty() && !std::ifstream(opt.resumePath))
+        throw Error(cat(opt.resumePath, ": cannot open the checkpoint (--resume): ", std::strerror(errno)));
 
     const Scene scene = loadGltf(opt.scenePath);
     for (const auto& w : scene.warnings)
@@ -188,6 +219,9 @@ int runRender(const RenderOptions& opt)
     settings.poolSize = opt.poolSize;
     settings.progress = opt.progress < 0 ? isatty(STDERR_FILENO) != 0 : opt.progress > 0;
     settings.rois = {roi};
+    settings.checkpointPath = opt.checkpointPath;
+    settings.resumePath = opt.resumePath;
+    parseCheckpointEvery(opt.checkpointEvery, &settings);
     // Error against time, batch by batch (what `scripts/compare.py` charts): the ROI's mean, the
     // noise estimate, and with a reference the RMSE and the mean's bias.
     nlohmann::json progress = nlohmann::json::array();
@@ -207,6 +241,7 @@ int runRender(const RenderOptions& opt)
         }
         progress.push_back(e);
     };
+    settings.carry = &progress;  // a resumed render's records start with those before it
     const StopSignals signals;
     settings.stop = &gStop;
     Renderer renderer(ctx, scene, sky, camera, width, height, settings);
@@ -251,6 +286,10 @@ int runRender(const RenderOptions& opt)
     j["bvh_layout"] = cat("bvh", r.bvhWidth);
     j["paths"] = r.paths;
     j["interrupted"] = r.interrupted;
+    j["checkpoint"] = {{"written", r.checkpoints},
+                       {"path", opt.checkpointPath.empty() ? nlohmann::json(nullptr) : nlohmann::json(opt.checkpointPath)},
+                       {"resumed_from", opt.resumePath.empty() ? nlohmann::json(nullptr) : nlohmann::json(opt.resumePath)},
+                       {"resumed_batches", r.resumedBatches}};
     j["batches"] = r.batches;
     j["paths_per_batch"] = r.pathsPerBatch;
     j["camera_samples_per_pixel"] = static_cast<std::uint64_t>(r.batches) * opt.cameraSpp;

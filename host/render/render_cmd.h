@@ -41,6 +41,9 @@ struct RenderOptions {
     std::uint32_t poolSize = 0;
     double exposure = 0.0;          // PNG preview; 0 = automatic
     int progress = -1;              // -1: when stderr is a terminal; 0 off; 1 on
+    std::string checkpointPath;     // --checkpoint
+    std::string checkpointEvery = "10min";  // --checkpoint-every: N min | N s | N batches
+    std::string resumePath;         // --resume
 };
 
 // Returns the exit status: 0, or 130 when a signal stopped the render early (its outputs are

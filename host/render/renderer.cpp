@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/state_io.h"
 #include "render/camera_setup.h"
+#include "render/checkpoint.h"
 #include "render/device_scene.h"
 #include "render/film.h"
 #include "trace/device_bvh.h"
@@ -42,6 +44,8 @@ struct Renderer::Impl {
     std::unique_ptr<EmissionStrategy> strategy;
     std::uint32_t pool;
     std::unique_ptr<Wavefront> wavefront;
+    CameraSpec camera;
+    std::uint64_t sceneHash_ = 0;  // only when checkpointing or resuming
 
     // Progress reporting across batches.
     std::uint64_t pathsDone = 0, pathsTotal = 0, raysDone = 0;
@@ -60,6 +64,9 @@ struct Renderer::Impl {
           // room: 2^16 slots 2.7 s, 2^19 slots 3.6 s). GPU: enough slots to fill the device.
           pool(st.poolSize > 0 ? st.poolSize : (c.info().isGpu() ? (1u << 21) : (1u << 16)))
     {
+        camera = cam;
+        if (!st.checkpointPath.empty() || !st.resumePath.empty())
+            sceneHash_ = sceneHash(s);
         wavefront = std::make_unique<Wavefront>(c, scene, *strategy, film, sky, makeDevCamera(cam, w, h), pool);
         dev::RenderParams p{};
         glm::dvec3 centre;
@@ -129,6 +136,107 @@ struct Renderer::Impl {
         return film.read(count);
     }
 
+    // What must be equal for a checkpoint to continue this render (render/checkpoint.h).
+    nlohmann::json fingerprint() const
+    {
+        const EmissionSettings& e = settings.emission;
+        const AdaptiveOptions& a = e.adaptive;
+        const auto v3 = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+        nlohmann::json rois = nlohmann::json::array();
+        for (const Roi& q : settings.rois)
+            rois.push_back({q.x0, q.y0, q.x1, q.y1});
+        char hash[17];
+        std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sceneHash_));
+        return {{"scene", hash},
+                {"camera", {{"position", v3(camera.position)}, {"forward", v3(camera.forward)},
+                            {"up", v3(camera.up)}, {"yfov", camera.yfovRad}}},
+                {"width", film.width()},
+                {"height", film.height()},
+                {"device", ctx.info().label()},
+                {"bvh_width", scene.bvh().width()},
+                {"seed", settings.seed},
+                {"paths", settings.paths},
+                {"time", settings.paths > 0 ? 0.0 : settings.timeSeconds},
+                {"batches", settings.batches},
+                {"camera_spp", settings.cameraSpp},
+                {"max_bounces", settings.maxBounces},
+                {"rois", rois},
+                {"method", methodName(e.method)},
+                {"portals", e.portals},
+                {"portal_overlap", static_cast<int>(e.overlap)},
+                {"portal_complement", e.portalComplement},
+                {"adaptive", {{"base", methodName(a.base)},
+                              {"initial_depth", a.initialDepth},
+                              {"max_depth", a.maxDepth},
+                              {"initial_sky_depth", a.initialSkyDepth},
+                              {"max_sky_depth", a.maxSkyDepth},
+                              {"estimate", static_cast<int>(a.estimate)},
+                              {"defensive", a.defensive},
+                              {"disk_share", a.diskShare},
+                              {"split_gain", a.splitGain},
+                              {"prior_paths", a.priorPaths},
+                              {"weigh_batches", a.weighBatches},
+                              {"first_pass", a.firstPass},
+                              {"max_cells", a.maxCells}}}};
+    }
+
+    // Where the batch loop stands; with the strategy's and the statistics' state, a checkpoint.
+    struct LoopState {
+        std::uint64_t base = 0, perBatch = 0;
+        int done = 0;
+        double renderSeconds = 0.0;  // counted batches, before this process
+    };
+
+    void saveCheckpoint(const LoopState& l, double renderSeconds, const RenderResult& r, const BatchStatistics& stats)
+    {
+        StateWriter w;
+        w.u64("loop.base", l.base);
+        w.u64("loop.per_batch", l.perBatch);
+        w.u64("loop.done", static_cast<std::uint64_t>(l.done));
+        w.f64("loop.render_seconds", renderSeconds);
+        w.f64("loop.calibration_seconds", r.calibrationSeconds);
+        const BatchCounts& n = r.counts;
+        w.u64s("loop.counts", {n.extensionRays, n.shadowRays, n.cameraRays, n.badContributions, n.overflows,
+                               n.statsOverflows, n.maxBounceCuts, n.cameraGlassCuts});
+        w.f64("loop.cut_flux", n.cutFlux);
+        stats.save(w);
+        strategy->saveState(w);
+        w.str("carry", settings.carry ? settings.carry->dump() : std::string("null"));
+        writeCheckpoint(settings.checkpointPath, fingerprint(), w.bytes());
+    }
+
+    void resume(LoopState& l, RenderResult& r, BatchStatistics& stats)
+    {
+        const std::string bytes = readCheckpoint(settings.resumePath, fingerprint());
+        StateReader in(bytes, settings.resumePath);
+        l.base = in.u64("loop.base");
+        l.perBatch = in.u64("loop.per_batch");
+        l.done = static_cast<int>(in.u64("loop.done", static_cast<std::uint64_t>(std::max(2, settings.batches))));
+        l.renderSeconds = in.f64("loop.render_seconds");
+        r.calibrationSeconds = in.f64("loop.calibration_seconds");
+        const std::vector<std::uint64_t> c = in.u64s("loop.counts", 8);
+        if (c.size() != 8)
+            in.fail("loop.counts", "not 8 counters");
+        BatchCounts& n = r.counts;
+        n.extensionRays = c[0], n.shadowRays = c[1], n.cameraRays = c[2], n.badContributions = c[3];
+        n.overflows = c[4], n.statsOverflows = c[5], n.maxBounceCuts = c[6], n.cameraGlassCuts = c[7];
+        n.cutFlux = in.f64("loop.cut_flux");
+        stats.load(in);
+        if (stats.batches() != l.done)
+            in.fail("film.batches", "does not match loop.done");
+        strategy->loadState(in);
+        const std::string carry = in.str("carry", 1u << 30);
+        in.end();
+        if (settings.carry) {
+            *settings.carry = nlohmann::json::parse(carry, nullptr, false);
+            if (settings.carry->is_discarded())
+                in.fail("carry", "not JSON");
+        }
+        if (l.perBatch == 0)
+            in.fail("loop.per_batch", "zero");
+        r.resumedBatches = l.done;
+    }
+
     RenderResult render()
     {
         RenderResult r;
@@ -138,13 +246,19 @@ struct Renderer::Impl {
         r.poolSize = pool;
         r.method = strategy->method();
         const int batches = std::max(2, settings.batches);
+        BatchStatistics stats(film.width(), film.height(), settings.rois);
+        LoopState l;
 
         start = lastProgress = Clock::now();
-        std::uint64_t perBatch = 0;
-        std::uint64_t base = 0;
-        if (settings.paths > 0) {
-            perBatch = std::max<std::uint64_t>(1, settings.paths / static_cast<std::uint64_t>(batches));
-            pathsTotal = perBatch * static_cast<std::uint64_t>(batches);
+        if (settings.paths > 0)
+            pathsTotal = std::max<std::uint64_t>(1, settings.paths / static_cast<std::uint64_t>(batches)) *
+                         static_cast<std::uint64_t>(batches);
+        if (!settings.resumePath.empty()) {
+            resume(l, r, stats);
+            pathsDone = l.perBatch * static_cast<std::uint64_t>(l.done);
+            budgetSeconds = settings.paths > 0 ? 0.0 : settings.timeSeconds;
+        } else if (settings.paths > 0) {
+            l.perBatch = std::max<std::uint64_t>(1, settings.paths / static_cast<std::uint64_t>(batches));
         } else {
             // Calibration, not counted: batches doubling from four pool-fulls until one lasts
             // min(1 s, 2 % of the budget), long enough to measure the path rate with the
@@ -157,9 +271,9 @@ struct Renderer::Impl {
             double last = 0.0;
             for (;;) {
                 const auto t0 = Clock::now();
-                runBatch(base, cal, 0xFFFFFFFFu, scratch);
+                runBatch(l.base, cal, 0xFFFFFFFFu, scratch);
                 last = since(t0);
-                base += cal;
+                l.base += cal;
                 if (last >= enough || since(c0) >= 0.1 * settings.timeSeconds || stopping())
                     break;
                 cal *= 2;
@@ -167,45 +281,61 @@ struct Renderer::Impl {
             r.calibrationSeconds = since(c0);
             const double rate = cal / std::max(last, 1e-6);
             const double left = std::max(0.0, settings.timeSeconds - r.calibrationSeconds);
-            perBatch = static_cast<std::uint64_t>(
+            l.perBatch = static_cast<std::uint64_t>(
                 std::clamp(rate * left / batches, static_cast<double>(pool), 1e15));
             pathsDone = 0;
             raysDone = 0;
             start = Clock::now();
         }
 
-        BatchStatistics stats(film.width(), film.height(), settings.rois);
         const auto t0 = Clock::now();
-        int done = 0;
+        const auto renderSeconds = [&] { return l.renderSeconds + since(t0); };
+        const bool checkpointing = !settings.checkpointPath.empty();
+        auto lastCheckpoint = Clock::now();
+        int savedAt = l.done;
+        const auto checkpoint = [&] {
+            saveCheckpoint(l, renderSeconds(), r, stats);
+            lastCheckpoint = Clock::now();
+            savedAt = l.done;
+            ++r.checkpoints;
+        };
         for (;;) {
-            if (settings.paths > 0 && done == batches)
+            if (settings.paths > 0 && l.done >= batches)
                 break;
-            if (done >= 1 && stopping()) {
+            if (l.done >= 1 && stopping()) {
                 r.interrupted = true;
                 break;
             }
-            if (settings.paths == 0 && done >= 2) {
-                const double elapsed = r.calibrationSeconds + since(t0);
-                const double perBatchSeconds = since(t0) / done;
+            if (settings.paths == 0 && l.done >= 2) {
+                const double elapsed = r.calibrationSeconds + renderSeconds();
+                const double perBatchSeconds = renderSeconds() / l.done;
                 if (elapsed + perBatchSeconds > settings.timeSeconds)
                     break;
             }
-            const std::vector<double> img = runBatch(base, perBatch, static_cast<std::uint32_t>(done), r.counts);
+            const std::vector<double> img =
+                runBatch(l.base, l.perBatch, static_cast<std::uint32_t>(l.done), r.counts);
             stats.add(img, strategy->batchWeight());
-            base += perBatch;
-            ++done;
+            l.base += l.perBatch;
+            ++l.done;
             if (settings.onBatch)
-                settings.onBatch({done, perBatch * static_cast<std::uint64_t>(done),
-                                  r.calibrationSeconds + since(t0), &stats});
+                settings.onBatch({l.done, l.perBatch * static_cast<std::uint64_t>(l.done),
+                                  r.calibrationSeconds + renderSeconds(), &stats});
+            const bool due = settings.checkpointBatches > 0
+                                 ? (l.done - savedAt) >= settings.checkpointBatches
+                                 : since(lastCheckpoint) >= settings.checkpointSeconds;
+            if (checkpointing && (due || stopping()))
+                checkpoint();
         }
-        r.renderSeconds = since(t0);
+        if (checkpointing && r.interrupted && savedAt != l.done)
+            checkpoint();
+        r.renderSeconds = renderSeconds();
         progress(true);
         if (settings.progress)
             std::fprintf(stderr, "\n");
 
-        r.batches = done;
-        r.pathsPerBatch = perBatch;
-        r.paths = perBatch * static_cast<std::uint64_t>(done);
+        r.batches = l.done;
+        r.pathsPerBatch = l.perBatch;
+        r.paths = l.perBatch * static_cast<std::uint64_t>(l.done);
         r.image = stats.mean();
         r.stdErrLuminance = stats.stdErrLuminance();
         r.roiBatchMeans = stats.roiBatchMeans();

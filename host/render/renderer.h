@@ -57,6 +57,14 @@ struct RenderSettings {
     // Set (by a signal handler) to stop: the batch in flight finishes and the render ends with the
     // batches done -- at least one, so the image is valid.
     const std::atomic<bool>* stop = nullptr;
+    // Checkpoints (render/checkpoint.h): written to checkpointPath after a batch when
+    // checkpointSeconds have passed since the last (or checkpointBatches batches, when > 0), and
+    // when stopped; resumePath continues one. `carry`: the caller's own state, kept in the
+    // checkpoint and restored on resume (the progress records).
+    std::string checkpointPath, resumePath;
+    double checkpointSeconds = 600.0;
+    int checkpointBatches = 0;
+    nlohmann::json* carry = nullptr;
 };
 
 struct RenderResult {
@@ -66,6 +74,8 @@ struct RenderResult {
     int batches = 0;
     BatchCounts counts;                  // rays and counters of the counted batches
     bool interrupted = false;         // stopped by settings.stop before its paths or time were done
+    int resumedBatches = 0;           // batches that came from the checkpoint resumed
+    int checkpoints = 0;              // checkpoints written
     double renderSeconds = 0.0;       // the counted batches
     double calibrationSeconds = 0.0;  // --time only: the uncounted first batches
     double bvhSeconds = 0.0, kernelBuildSeconds = 0.0;

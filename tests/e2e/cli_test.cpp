@@ -205,6 +205,35 @@ TEST(CliRender, AnInterruptedRenderWritesWhatItHas)
     EXPECT_EQ(j["counters"]["bad_contributions"], 0);
 }
 
+TEST(CliRender, ACheckpointResumesBitIdentically)
+{
+    // A render stopped by SIGTERM saves a checkpoint; --resume finishes it, and the EXR is the
+    // byte-for-byte EXR of the render that was never stopped. A checkpoint of another render is
+    // refused in one line.
+    const std::string dir = test::tempDir("cli-render-checkpoint");
+    const std::string scene = plateScene().write(dir + "/plate.gltf");
+    const std::string args = " --paths 16777216 --batches 256 --width 40 --seed 5 --no-progress";
+    ASSERT_EQ(run("render " + scene + " --out " + dir + "/whole.exr" + args).status, 0);
+    const std::string cmd = std::string(FENESTRA_BIN) + " render " + scene + " --out " + dir + "/r.exr" + args +
+                            " --checkpoint " + dir + "/c.ckpt 2>" + dir + "/err & pid=$!; sleep 1; kill -TERM $pid; "
+                            "wait $pid; echo $? >" + dir + "/status";
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
+    ASSERT_EQ(std::stoi(slurp(dir + "/status")), 130) << slurp(dir + "/err");
+    const CliRun r = run("render " + scene + " --out " + dir + "/r.exr" + args + " --resume " + dir + "/c.ckpt");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(slurp(dir + "/r.exr"), slurp(dir + "/whole.exr"));
+    const auto j = nlohmann::json::parse(slurp(dir + "/r.json"));
+    EXPECT_GT(j["checkpoint"]["resumed_batches"].get<int>(), 0);
+    EXPECT_EQ(j["progress"].size(), 256u);  // the records from before the stop came back
+    expectError(run("render " + scene + " --out " + dir + "/x.exr" + args + " --resume " + dir +
+                    "/c.ckpt --max-bounces 5"),
+                1, "max_bounces was 1024, not 5");
+    expectError(run("render " + scene + " --out " + dir + "/x.exr" + args + " --resume " + dir + "/none.ckpt"), 1,
+                "none.ckpt");
+    expectError(run("render " + scene + " --out " + dir + "/x.exr" + args + " --checkpoint-every 3parsecs"), 1,
+                "--checkpoint-every");
+}
+
 TEST(CliRender, TimeBudgetAndPortalsFromTheCommandLine)
 {
     const std::string dir = test::tempDir("cli-render-time");

@@ -1,0 +1,200 @@
+// checkpoint.cpp — writing, checking and reading checkpoints (checkpoint.h).
+#include "render/checkpoint.h"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "io/output_files.h"
+#include "util/error.h"
+
+namespace fen {
+
+namespace {
+
+constexpr const char* kMagic = "FENESTRA CHECKPOINT 1\n";
+constexpr std::uint64_t kMaxBytes = std::uint64_t{8} << 30;  // a 16k x 16k image's sums fit
+
+struct Fnv {
+    std::uint64_t h = 1469598103934665603ull;
+    void add(const void* data, std::size_t n)
+    {
+        const unsigned char* b = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < n; ++i)
+            h = (h ^ b[i]) * 1099511628211ull;
+    }
+    template <class T>
+    void value(const T& v)
+    {
+        add(&v, sizeof v);
+    }
+    void text(const std::string& s)
+    {
+        value(s.size());
+        add(s.data(), s.size());
+    }
+};
+
+std::string le64(std::uint64_t v)
+{
+    std::string s(8, '\0');
+    for (int i = 0; i < 8; ++i)
+        s[i] = static_cast<char>((v >> (8 * i)) & 0xffu);
+    return s;
+}
+
+std::uint64_t fromLe64(const std::string& s, std::size_t at)
+{
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i)
+        v |= static_cast<std::uint64_t>(static_cast<unsigned char>(s[at + i])) << (8 * i);
+    return v;
+}
+
+// The first key (a.b.c) where the two fingerprints differ, with both values.
+bool firstDifference(const nlohmann::json& want, const nlohmann::json& have, const std::string& at,
+                     std::string* where)
+{
+    if (want.is_object() && have.is_object()) {
+        for (const auto& [k, v] : want.items()) {
+            const std::string key = at.empty() ? k : at + "." + k;
+            if (!have.contains(k)) {
+                *where = cat(key, " is missing from it");
+                return true;
+            }
+            if (firstDifference(v, have[k], key, where))
+                return true;
+        }
+        for (const auto& [k, v] : have.items())
+            if (!want.contains(k)) {
+                *where = cat(at.empty() ? k : at + "." + k, " is not a setting of this render");
+                return true;
+            }
+        return false;
+    }
+    if (want == have)
+        return false;
+    *where = cat(at, " was ", printable(have.dump(), 80), ", not ", printable(want.dump(), 80));
+    return true;
+}
+
+}  // namespace
+
+std::string buildId()
+{
+    Fnv f;
+    std::ifstream exe("/proc/self/exe", std::ios::binary);
+    char buf[1 << 16];
+    bool any = false;
+    while (exe.read(buf, sizeof buf) || exe.gcount() > 0) {
+        f.add(buf, static_cast<std::size_t>(exe.gcount()));
+        any = true;
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
+    return any ? cat("fenestra 0.1 build ", hex) : std::string("fenestra 0.1");
+}
+
+std::uint64_t sceneHash(const Scene& s)
+{
+    Fnv f;
+    f.value(s.triangles.size());
+    if (!s.triangles.empty())
+        f.add(s.triangles.data(), s.triangles.size() * sizeof(Triangle));
+    f.value(s.triangleMaterial.size());
+    if (!s.triangleMaterial.empty())
+        f.add(s.triangleMaterial.data(), s.triangleMaterial.size() * sizeof(std::uint32_t));
+    f.value(s.triangleNode.size());
+    if (!s.triangleNode.empty())
+        f.add(s.triangleNode.data(), s.triangleNode.size() * sizeof(std::uint32_t));
+    for (const Material& m : s.materials) {
+        f.value(m.albedo);
+        f.value(m.glass);
+        f.value(m.transmission);
+        f.value(m.ior);
+    }
+    for (std::size_t i = 0; i < s.nodeNames.size(); ++i) {
+        f.text(s.nodeNames[i]);
+        f.value(i < s.nodePortal.size() ? static_cast<int>(s.nodePortal[i]) : -1);
+    }
+    f.value(s.sun.present);
+    f.value(s.sun.travelDirection);
+    f.value(s.sun.illuminanceRgb_lux);
+    f.value(s.sun.angularRadiusRad);
+    f.value(static_cast<int>(s.sky.type));
+    f.value(s.sky.luminance_cd_m2);
+    f.value(s.sky.cieType);
+    f.value(s.sky.zenithLuminance_cd_m2);
+    f.value(s.sky.sunAltitudeDeg);
+    f.value(s.sky.sunAzimuthDeg);
+    for (double v : s.sky.zenithDeg)
+        f.value(v);
+    for (double v : s.sky.azimuthDeg)
+        f.value(v);
+    for (const auto& row : s.sky.table_cd_m2)
+        for (double v : row)
+            f.value(v);
+    return f.h;
+}
+
+void writeCheckpoint(const std::string& path, const nlohmann::json& fingerprint, const std::string& payload)
+{
+    const nlohmann::json header = {{"build", buildId()}, {"fingerprint", fingerprint}};
+    std::string bytes = kMagic;
+    bytes += header.dump() + "\n";
+    bytes += le64(payload.size());
+    bytes += payload;
+    Fnv f;
+    f.add(bytes.data(), bytes.size());
+    bytes += le64(f.h);
+    OutputFiles out;
+    out.add(path, std::move(bytes));
+    out.commit();
+}
+
+std::string readCheckpoint(const std::string& path, const nlohmann::json& fingerprint)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw Error(cat(path, ": cannot open the checkpoint: ", std::strerror(errno)));
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    if (size < 0 || static_cast<std::uint64_t>(size) > kMaxBytes)
+        throw Error(cat(path, ": not a checkpoint (unreadable, or larger than 8 GiB)"));
+    in.seekg(0);
+    std::string bytes(static_cast<std::size_t>(size), '\0');
+    if (!in.read(bytes.data(), size))
+        throw Error(cat(path, ": cannot read the checkpoint"));
+    const std::size_t magic = std::strlen(kMagic);
+    if (bytes.compare(0, magic, kMagic) != 0)
+        throw Error(cat(path, ": not a fenestra checkpoint"));
+    const std::size_t eol = bytes.find('\n', magic);
+    if (eol == std::string::npos || bytes.size() - eol - 1 < 16)
+        throw Error(cat(path, ": the checkpoint is truncated"));
+    Fnv f;
+    f.add(bytes.data(), bytes.size() - 8);
+    if (f.h != fromLe64(bytes, bytes.size() - 8))
+        throw Error(cat(path, ": the checkpoint is damaged (checksum mismatch): truncated or altered"));
+    const std::uint64_t length = fromLe64(bytes, eol + 1);
+    if (length != bytes.size() - eol - 1 - 16)
+        throw Error(cat(path, ": the checkpoint is damaged (its length does not match the file)"));
+    const nlohmann::json header = nlohmann::json::parse(bytes.begin() + magic, bytes.begin() + eol, nullptr, false);
+    if (header.is_discarded() || !header.is_object() || !header.contains("build") || !header.contains("fingerprint") ||
+        !header["build"].is_string())
+        throw Error(cat(path, ": the checkpoint's header is not valid"));
+    const std::string build = header["build"], mine = buildId();
+    if (build != mine)
+        throw Error(cat(path, ": made by ", printable(build, 80), ", not by this ", mine,
+                        ": a checkpoint is resumed by the build that wrote it"));
+    const nlohmann::json& theirs = header["fingerprint"];
+    if (fingerprint.contains("scene") && theirs.is_object() && theirs.contains("scene") &&
+        theirs["scene"] != fingerprint["scene"])
+        throw Error(cat(path, ": made for another render: the scene differs (content hash ",
+                        printable(theirs["scene"].dump(), 40), ", not ", fingerprint["scene"].dump(), ")"));
+    std::string where;
+    if (firstDifference(fingerprint, theirs, "", &where))
+        throw Error(cat(path, ": made for another render: ", where));
+    return bytes.substr(eol + 1 + 8, static_cast<std::size_t>(length));
+}
+
+}  // namespace fen

@@ -1,0 +1,41 @@
+// checkpoint.h — a render saved between two batches, to be continued later (README "Nothing
+// lost"): `--checkpoint PATH` writes one, `--resume PATH` continues from it, and the image is
+// bit-identical to a render that was never stopped.
+//
+// A checkpoint holds what the next batches depend on and nothing that can be recomputed: the
+// index of the next path (random numbers are keyed by it), the batch statistics' sums, the
+// counters, the emission strategy's learned state (emission/strategy.h saveState), and a piece of
+// the caller's state (the progress records). Its header names the fenestra build that wrote it
+// and a fingerprint of the render -- scene content, image, camera, seed, paths or time, method
+// and every emission option, device, BVH layout -- and resuming under any other build or
+// fingerprint is refused with one line naming the first difference. A checksum over the whole
+// file turns a truncated or altered file into an error, not a wrong image.
+//
+// Layout: "FENESTRA CHECKPOINT 1\n", the header as one line of JSON, the payload's length
+// (8 bytes, little-endian), the payload (io/state_io.h), an FNV-1a 64 checksum of all before it.
+// Written like every output (io/output_files.h): temporary file, fsync, rename.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/scene.h"
+
+namespace fen {
+
+// This build: the version and a hash of the running executable, so that a checkpoint is only
+// ever continued by the code that started it.
+std::string buildId();
+
+// A hash of everything in the scene that light transport reads.
+std::uint64_t sceneHash(const Scene& scene);
+
+void writeCheckpoint(const std::string& path, const nlohmann::json& fingerprint, const std::string& payload);
+
+// The payload of the checkpoint at `path`, after checking its integrity, its build and that its
+// fingerprint equals `fingerprint` (fen::Error naming the file and the first key that differs).
+std::string readCheckpoint(const std::string& path, const nlohmann::json& fingerprint);
+
+}  // namespace fen
