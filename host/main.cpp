@@ -82,7 +82,10 @@ int main(int argc, char** argv)
     benchCmd->add_flag("--render", bench.render,
                        "Also render the scene each round (procedural scenes get an opening and "
                        "lights) and compare its rays/s with traversal");
-    benchCmd->add_option("--render-paths", bench.renderPaths, "Light paths per render (default 4194304)");
+    benchCmd->add_option("--render-paths", bench.renderPaths, "Light paths per render instead of --render-time");
+    benchCmd->add_option("--render-time", bench.renderSeconds, "Seconds per render (default 20)");
+    benchCmd->add_option("--render-method", bench.renderMethod, "Emission method of the render (default uniform)");
+    benchCmd->add_option("--kernels", bench.kernels, "Render kernels: fused or wavefront (default: the device's)");
 
     fen::RenderOptions render;
     std::string renderLayout;
@@ -131,6 +134,8 @@ int main(int argc, char** argv)
                           "With adaptive: pseudo-paths of the prior in every cell (default 32)");
     renderCmd->add_option("--adaptive-weights", render.adaptiveWeights,
                           "With adaptive: batches weigh by predicted precision, or all alike: predicted (default) or equal");
+    renderCmd->add_option("--adaptive-target", render.adaptiveTarget,
+                          "With adaptive: minimise the absolute (default) or the relative squared error per pixel");
     renderCmd->add_option("--adaptive-max-cells", render.adaptiveMaxCells,
                           "With adaptive: most cells the grid may have (default 32768)");
     renderCmd->add_option("--portal-complement", render.portalComplement,
@@ -142,6 +147,10 @@ int main(int argc, char** argv)
     renderCmd->add_option("--batches", render.batches, "Independent batches for the noise estimate (default 16)");
     renderCmd->add_option("--camera-spp", render.cameraSpp,
                           "Camera-pass samples per pixel per batch, for the sky seen directly (default 1)");
+    renderCmd->add_option("--kernels", render.kernels,
+                          "How the stages run: fused (one kernel per path, default on a CPU) or wavefront (default on a GPU)");
+    renderCmd->add_option("--roulette-depth", render.rouletteDepth,
+                          "Russian roulette from this surface interaction on; before it every path goes on (default 0)");
     renderCmd->add_option("--pool", render.poolSize, "Path slots on the device (default: 2^16 CPU, 2^21 GPU)");
     renderCmd->add_option("--exposure", render.exposure, "PNG preview exposure (default: ROI mean to mid-grey)");
     renderCmd->add_option("--checkpoint", render.checkpointPath,

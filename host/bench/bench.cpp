@@ -68,6 +68,21 @@ struct LayoutRun {
 
 // Fraction of rays on which two closest-hit results agree: same triangle, or the same distance
 // within 1e-4 relative (a tie between neighbours sharing an edge).
+// The emission stage's share of a render's device time; null for the fused kernel, which runs
+// emission inside its one kernel.
+nlohmann::json emitShare(const RenderResult& r)
+{
+    if (r.kernelMode == KernelMode::Fused)
+        return nullptr;
+    double emit = 0.0, all = 0.0;
+    for (const auto& [name, k] : r.kernels) {
+        all += k.deviceSeconds;
+        if (name == "emit_paths")
+            emit += k.deviceSeconds;
+    }
+    return all > 0.0 ? nlohmann::json(emit / all) : nlohmann::json(nullptr);
+}
+
 double closestAgreement(const std::vector<dev::Hit>& a, const std::vector<dev::Hit>& b)
 {
     std::size_t same = 0;
@@ -164,6 +179,10 @@ int runBench(const BenchOptions& opt)
         renderSky = buildSky(renderScene.sky);
         RenderSettings rs;
         rs.paths = opt.renderPaths;
+        rs.timeSeconds = opt.renderPaths > 0 ? 0.0 : opt.renderSeconds;
+        rs.emission.method = parseEmissionMethod(opt.renderMethod);
+        if (!opt.kernels.empty())
+            rs.kernels = parseKernelMode(opt.kernels);
         rs.seed = static_cast<std::uint32_t>(opt.seed);
         rs.bvhWidth = layouts.front().width;
         renderer = std::make_unique<Renderer>(ctx, renderScene, renderSky, renderScene.cameras.front(),
@@ -291,6 +310,10 @@ int runBench(const BenchOptions& opt)
         if (renderer)
             j["render"] = {{"scene", renderScene.source},
                            {"paths", lastRender.paths},
+                           {"seconds", lastRender.renderSeconds},
+                           {"method", opt.renderMethod},
+                           {"kernel_mode", kernelModeName(lastRender.kernelMode)},
+                           {"emit_share", emitShare(lastRender)},
                            {"width", 320},
                            {"height", 240},
                            {"extension_rays", lastRender.counts.extensionRays},
@@ -349,9 +372,10 @@ int runBench(const BenchOptions& opt)
                     "the comparison)\n");
 #endif
     if (renderer) {
-        std::printf("\nrender (%s, %llu paths, 320 x 240, bvh%d): %.2f Mrays/s [%.2f-%.2f] "
-                    "(extension + shadow rays; %.2f Mpaths/s)\n",
-                    renderScene.source.c_str(), static_cast<unsigned long long>(lastRender.paths),
+        std::printf("\nrender (%s, %s, %s kernels, %llu paths in %.1f s, 320 x 240, bvh%d): %.2f Mrays/s "
+                    "[%.2f-%.2f] (extension + shadow rays; %.2f Mpaths/s)\n",
+                    renderScene.source.c_str(), opt.renderMethod.c_str(), kernelModeName(lastRender.kernelMode).c_str(),
+                    static_cast<unsigned long long>(lastRender.paths), lastRender.renderSeconds,
                     layouts.front().width, renderMrays.median(), renderMrays.min(), renderMrays.max(),
                     renderPathsPerSec.median());
         std::printf("render / closest-hit traversal on the same scene (median of per-run ratios): "

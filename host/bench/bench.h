@@ -18,7 +18,10 @@ struct BenchOptions {
     bool sweepQuality = false;       // also build the full-sweep SAH tree and compare costs
     bool json = false;
     bool render = false;             // also render the scene, interleaved, and compare rays/s
-    std::uint64_t renderPaths = 1u << 22;
+    std::uint64_t renderPaths = 0;   // 0: render for renderSeconds instead
+    double renderSeconds = 20.0;     // long enough to be steady (batches, learning, caches)
+    std::string renderMethod = "uniform";
+    std::string kernels;             // "" = the device's default (renderer.h)
 };
 
 int runBench(const BenchOptions& opt);

@@ -90,7 +90,12 @@ std::string resolveKernelSource(const std::string& mainFile, const KernelFileRea
         throw Error(cat("kernel source kernels/", mainFile, " not found",
                         std::getenv("FEN_KERNEL_DIR") ? " under FEN_KERNEL_DIR" : ""));
     std::set<std::string> seen{mainFile};
-    std::string out;
+    // No contraction into fused multiply-adds anywhere: the triangle test needs it off to be
+    // watertight (lib/tri_packet.h), and every function must round the same in every program it
+    // is part of -- the wavefront stages and the fused kernel (lib/fused_kernel.h) give
+    // bit-identical images only if they do. OpenCL C has no build option for this, so every
+    // program starts with the pragma.
+    std::string out = "#pragma OPENCL FP_CONTRACT OFF\n";
     expand(mainFile, text, reader, seen, out);
     return out;
 }

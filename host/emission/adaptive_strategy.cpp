@@ -26,6 +26,12 @@ constexpr double kTwo64 = 18446744073709551616.0;
 // Statistics hold round(Y^2 * 2^32 / ref^2), 128-bit: contributions down to ~1e-5 of the
 // reference luminance still register, and 2^95 ref^2 fits before overflowing (lib/accumulate.h).
 constexpr int kStatsFixedPointBits = 32;
+// The relative target's image estimate is averaged over tiles of this many pixels a side (a
+// single pixel's early estimate is mostly noise), and a tile darker than kRelativeFloor of the
+// image's mean counts as that bright: a dark tile then weighs at most 1 / kRelativeFloor^2 as much
+// as an average one, and one no light has reached yet does not take over the grid.
+constexpr int kRelativeTile = 16;
+constexpr double kRelativeFloor = 0.02;
 // In the base density a portal plane is weighted by |v.n| plus this, so that no plane is written off
 // for directions it faces edge-on before anything is measured: cells are wide at first.
 constexpr double kPlaneFloor = 0.05;
@@ -141,6 +147,15 @@ public:
         });
 
         createBuffers(scene);
+        if (opt_.relativeTarget) {
+            filmWidth_ = in.filmWidth;
+            filmHeight_ = in.filmHeight;
+            const std::size_t px = static_cast<std::size_t>(filmWidth_) * filmHeight_;
+            pixelScaleHost_.assign(std::max<std::size_t>(px, 1), 1.0f);  // before any estimate: absolute
+            pixelScale_ = ctx_.buffer(CL_MEM_READ_ONLY, pixelScaleHost_.size() * 4, "adaptive pixel scale",
+                                      pixelScaleHost_.data());
+            deviceBytes_ += pixelScaleHost_.size() * 4;
+        }
         upload();
         passSize_ = opt_.firstPass;
         learnSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -168,6 +183,39 @@ public:
     }
     const cl::Buffer& cellStats() const override { return stats_; }
     double statsScale() const override { return statsScale_; }
+    const cl::Buffer* statsPixelScale() const override { return opt_.relativeTarget ? &pixelScale_ : nullptr; }
+
+    // The relative target: a contribution to pixel p counts as Y * mean / max(tile(p), floor mean),
+    // i.e. relative to its pixel's brightness in units of the image's mean.
+    void imageEstimate(const std::vector<double>& luminance) override
+    {
+        if (!opt_.relativeTarget || luminance.size() != pixelScaleHost_.size())
+            return;
+        const int w = filmWidth_, h = filmHeight_, t = kRelativeTile;
+        const int tw = (w + t - 1) / t, th = (h + t - 1) / t;
+        std::vector<double> tileSum(static_cast<std::size_t>(tw) * th, 0.0), tileCount(tileSum.size(), 0.0);
+        double total = 0.0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const double v = luminance[static_cast<std::size_t>(y) * w + x];
+                const double Y = std::isfinite(v) && v > 0.0 ? v : 0.0;
+                const std::size_t k = static_cast<std::size_t>(y / t) * tw + x / t;
+                tileSum[k] += Y;
+                tileCount[k] += 1.0;
+                total += Y;
+            }
+        const double mean = total / (static_cast<double>(w) * h);
+        if (!(mean > 0.0))
+            return;  // nothing seen yet: keep the factors
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const std::size_t k = static_cast<std::size_t>(y / t) * tw + x / t;
+                const double tile = tileSum[k] / tileCount[k];
+                pixelScaleHost_[static_cast<std::size_t>(y) * w + x] =
+                    static_cast<float>(mean / std::max(tile, kRelativeFloor * mean));
+            }
+        ctx_.queue().enqueueWriteBuffer(pixelScale_, CL_TRUE, 0, pixelScaleHost_.size() * 4, pixelScaleHost_.data());
+    }
     std::uint64_t passLimit() const override { return passSize_ - passPaths_; }
 
     void afterPaths(std::uint64_t paths, bool batchEnd) override
@@ -268,6 +316,7 @@ public:
             {"checksum", grid_->checksum()},
             {"batch_weights", relativeWeights()},
             {"first_pass_paths", opt_.firstPass},
+            {"target", opt_.relativeTarget ? "relative" : "absolute"},
             {"defensive", opt_.defensive},
             {"estimate", opt_.estimate == GridEstimate::Pooled ? "pooled" : "squares"},
             {"split_gain", opt_.splitGain},
@@ -463,6 +512,9 @@ private:
     dev::AdaptiveParams deviceParams_{};
     cl::Buffer params_, cellAlias_, cellBuf_, stats_, frames_;
     std::unique_ptr<DeviceBvh> portalBvh_;
+    cl::Buffer pixelScale_;              // the relative target's factor per pixel
+    std::vector<float> pixelScaleHost_;
+    int filmWidth_ = 0, filmHeight_ = 0;
     std::size_t deviceBytes_ = 0;
     std::uint64_t passSize_ = 0, passPaths_ = 0;
     int passes_ = 0;

@@ -56,6 +56,10 @@ struct AdaptiveOptions {
     double splitGain = 1.0 / 2048.0;  // split a cell when that lowers the learned objective this much
     double priorPaths = 32.0;  // pseudo-paths of the prior in every cell
     bool weighBatches = true;  // batches weigh by predicted precision (else all alike)
+    // What the learned density minimises: the image's squared error (the paper's eq. 7), or its
+    // relative squared error -- each contribution measured against its pixel's brightness, so
+    // that a bright sun patch does not draw the paths away from the dim regions (DESIGN.md §3.3).
+    bool relativeTarget = false;
     std::uint64_t firstPass = 1u << 16;  // paths of the first learning pass; each pass doubles
     std::uint32_t maxCells = 1u << 15;
 };
@@ -79,6 +83,7 @@ struct EmissionInputs {
     const DeviceSky& deviceSky;            // ... and on the device
     int bvhWidth;                          // the scene's BVH layout, for portal sets
     double pixelFixedScale;                // RenderParams.fixed_scale (cell sums of Y use it too)
+    int filmWidth = 0, filmHeight = 0;     // the image, for a strategy that steers by pixel
 };
 
 class EmissionStrategy {
@@ -94,6 +99,11 @@ public:
     virtual const cl::Buffer& cellStats() const = 0;
     // Fixed-point units per (cd/m^2)^2 of the statistics (RenderParams.stats_scale).
     virtual double statsScale() const { return 0.0; }
+    // A strategy that weighs its statistics by pixel (connect.cl's FEN_STATS_PIXEL_SCALE) returns
+    // the per-pixel factors' buffer, and wants imageEstimate() after every pass; else nullptr.
+    virtual const cl::Buffer* statsPixelScale() const { return nullptr; }
+    // The image so far (luminance per pixel, row-major): deterministic for a seed and settings.
+    virtual void imageEstimate(const std::vector<double>& luminance) { (void)luminance; }
     // The most paths the renderer may run before calling afterPaths again.
     virtual std::uint64_t passLimit() const { return std::numeric_limits<std::uint64_t>::max(); }
     // The wavefront has finished `paths` more paths; `batchEnd`: they end a batch.

@@ -134,6 +134,10 @@ EmissionSettings emissionSettings(const RenderOptions& opt)
         a.weighBatches = false;
     else if (!opt.adaptiveWeights.empty() && opt.adaptiveWeights != "predicted")
         throw Error(cat("--adaptive-weights '", opt.adaptiveWeights, "': expected predicted or equal"));
+    if (opt.adaptiveTarget == "absolute")
+        a.relativeTarget = false;
+    else if (!opt.adaptiveTarget.empty() && opt.adaptiveTarget != "relative")
+        throw Error(cat("--adaptive-target '", printable(opt.adaptiveTarget, 40), "': expected relative or absolute"));
     if (adaptive)
         validateAdaptiveOptions(a);
     return e;
@@ -217,6 +221,10 @@ int runRender(const RenderOptions& opt)
     settings.maxBounces = opt.maxBounces;
     settings.bvhWidth = opt.bvhWidth;
     settings.poolSize = opt.poolSize;
+    if (!opt.kernels.empty())
+        settings.kernels = parseKernelMode(opt.kernels);
+    if (opt.rouletteDepth >= 0)
+        settings.rouletteDepth = opt.rouletteDepth;
     settings.progress = opt.progress < 0 ? isatty(STDERR_FILENO) != 0 : opt.progress > 0;
     settings.rois = {roi};
     settings.checkpointPath = opt.checkpointPath;
@@ -283,6 +291,8 @@ int runRender(const RenderOptions& opt)
     j["height"] = height;
     j["seed"] = opt.seed;
     j["max_bounces"] = opt.maxBounces;
+    j["roulette_depth"] = settings.rouletteDepth;
+    j["kernel_mode"] = kernelModeName(r.kernelMode);
     j["bvh_layout"] = cat("bvh", r.bvhWidth);
     j["paths"] = r.paths;
     j["interrupted"] = r.interrupted;

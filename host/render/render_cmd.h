@@ -35,11 +35,14 @@ struct RenderOptions {
     std::uint32_t adaptiveMaxCells = 0;
     double adaptivePrior = -1.0;
     std::string adaptiveWeights;    // --adaptive-weights predicted|equal
+    std::string adaptiveTarget;     // --adaptive-target relative|absolute
     int bvhWidth = 0;
     int batches = 16;
     int cameraSpp = 1;
     std::uint32_t poolSize = 0;
     double exposure = 0.0;          // PNG preview; 0 = automatic
+    std::string kernels;            // --kernels wavefront|fused; empty: the device's default
+    int rouletteDepth = -1;         // -1: the default of RenderSettings
     int progress = -1;              // -1: when stderr is a terminal; 0 off; 1 on
     std::string checkpointPath;     // --checkpoint
     std::string checkpointEvery = "10min";  // --checkpoint-every: N min | N s | N batches

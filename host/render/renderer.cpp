@@ -58,7 +58,7 @@ struct Renderer::Impl {
           scene(c, s, st.bvhWidth > 0 ? st.bvhWidth : defaultBvhWidth(c.info().isGpu())),
           skyTables(makeSkyTables(g)), sky(c, skyTables),
           film(c, w, h, referenceLuminance(s, skyTables)),
-          strategy(makeEmissionStrategy(st.emission, {c, s, skyTables, g, sky, scene.bvh().width(), film.fixedScale()})),
+          strategy(makeEmissionStrategy(st.emission, {c, s, skyTables, g, sky, scene.bvh().width(), film.fixedScale(), film.width(), film.height()})),
           // CPU: a pool whose path states, hits and connections (144 B a slot) fit in the
           // last-level cache -- every stage streams through all of it (measured on the default
           // room: 2^16 slots 2.7 s, 2^19 slots 3.6 s). GPU: enough slots to fill the device.
@@ -67,7 +67,8 @@ struct Renderer::Impl {
         camera = cam;
         if (!st.checkpointPath.empty() || !st.resumePath.empty())
             sceneHash_ = sceneHash(s);
-        wavefront = std::make_unique<Wavefront>(c, scene, *strategy, film, sky, makeDevCamera(cam, w, h), pool);
+        wavefront = std::make_unique<Wavefront>(c, scene, *strategy, film, sky, makeDevCamera(cam, w, h), pool,
+                                                st.kernels ? *st.kernels : defaultKernelMode(c.info().isGpu()));
         dev::RenderParams p{};
         glm::dvec3 centre;
         double radius;
@@ -85,6 +86,7 @@ struct Renderer::Impl {
         p.sky_phi_nodes = skyTables.phiNodes;
         p.pool_size = pool;
         p.camera_spp = static_cast<std::uint32_t>(st.cameraSpp);
+        p.rr_depth = static_cast<std::uint32_t>(st.rouletteDepth);
         wavefront->setParams(p);
     }
 
@@ -111,10 +113,31 @@ struct Renderer::Impl {
         std::fflush(stderr);
     }
 
+    // Hands a strategy that steers by pixel the image so far: the counted batches' mean, or
+    // before there is one, the batch in flight after `paths` of its paths. A function of the seed
+    // and settings only, so learning stays deterministic, and of the counted batches alone
+    // between batches, so a resumed render sees what the uninterrupted one saw.
+    void estimateImage(const BatchStatistics* stats, std::uint64_t paths)
+    {
+        if (!strategy->statsPixelScale())
+            return;
+        std::vector<double> Y(film.pixels());
+        if (stats && stats->batches() > 0) {
+            const Image m = stats->mean();
+            for (std::size_t p = 0; p < Y.size(); ++p)
+                Y[p] = luminance(m.rgb[3 * p], m.rgb[3 * p + 1], m.rgb[3 * p + 2]);
+        } else {
+            const std::vector<double> rgb = film.read(paths);
+            for (std::size_t p = 0; p < Y.size(); ++p)
+                Y[p] = luminance(rgb[3 * p], rgb[3 * p + 1], rgb[3 * p + 2]);
+        }
+        strategy->imageEstimate(Y);
+    }
+
     // Runs paths [base, base + count) as one batch, in the strategy's passes, and returns its
-    // image (rgb per pixel).
+    // image (rgb per pixel). `stats`: the counted batches so far (none while calibrating).
     std::vector<double> runBatch(std::uint64_t base, std::uint64_t count, std::uint32_t batch,
-                                 BatchCounts& counts)
+                                 BatchCounts& counts, const BatchStatistics* stats)
     {
         film.clear();
         wavefront->beginBatch();
@@ -129,6 +152,7 @@ struct Renderer::Impl {
             wavefront->run(base + done, n, counts, onIteration);
             done += n;
             strategy->afterPaths(n, done == count);
+            estimateImage(stats, done);
         }
         const std::uint64_t shadowBefore = counts.shadowRays;
         wavefront->endBatch(batch, counts);
@@ -160,6 +184,7 @@ struct Renderer::Impl {
                 {"batches", settings.batches},
                 {"camera_spp", settings.cameraSpp},
                 {"max_bounces", settings.maxBounces},
+                {"roulette_depth", settings.rouletteDepth},
                 {"rois", rois},
                 {"method", methodName(e.method)},
                 {"portals", e.portals},
@@ -225,6 +250,7 @@ struct Renderer::Impl {
         if (stats.batches() != l.done)
             in.fail("film.batches", "does not match loop.done");
         strategy->loadState(in);
+        estimateImage(&stats, 0);
         const std::string carry = in.str("carry", 1u << 30);
         in.end();
         if (settings.carry) {
@@ -244,6 +270,7 @@ struct Renderer::Impl {
         r.kernelBuildSeconds = wavefront->kernelBuildSeconds();
         r.bvhWidth = scene.bvh().width();
         r.poolSize = pool;
+        r.kernelMode = wavefront->mode();
         r.method = strategy->method();
         const int batches = std::max(2, settings.batches);
         BatchStatistics stats(film.width(), film.height(), settings.rois);
@@ -271,7 +298,7 @@ struct Renderer::Impl {
             double last = 0.0;
             for (;;) {
                 const auto t0 = Clock::now();
-                runBatch(l.base, cal, 0xFFFFFFFFu, scratch);
+                runBatch(l.base, cal, 0xFFFFFFFFu, scratch, nullptr);
                 last = since(t0);
                 l.base += cal;
                 if (last >= enough || since(c0) >= 0.1 * settings.timeSeconds || stopping())
@@ -313,8 +340,9 @@ struct Renderer::Impl {
                     break;
             }
             const std::vector<double> img =
-                runBatch(l.base, l.perBatch, static_cast<std::uint32_t>(l.done), r.counts);
+                runBatch(l.base, l.perBatch, static_cast<std::uint32_t>(l.done), r.counts, &stats);
             stats.add(img, strategy->batchWeight());
+            estimateImage(&stats, 0);
             l.base += l.perBatch;
             ++l.done;
             if (settings.onBatch)
@@ -388,6 +416,8 @@ Renderer::Renderer(ocl::Context& ctx, const Scene& scene, const std::optional<Go
                         "compares batches)"));
     if (settings.maxBounces < 1)
         throw Error(cat("--max-bounces ", settings.maxBounces, " must be at least 1"));
+    if (settings.rouletteDepth < 0 || settings.rouletteDepth > 64)
+        throw Error(cat("--roulette-depth ", settings.rouletteDepth, " must be in 0..64"));
     if (settings.batches > 1024)
         throw Error(cat("--batches ", settings.batches, " is beyond 1024: every batch has a fixed cost "
                         "(the camera pass, the statistics), and 16 already estimate the noise well"));

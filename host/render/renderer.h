@@ -16,6 +16,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,8 @@ struct RenderSettings {
     int maxBounces = 1024;       // guards against endless paths; roulette ends them (cut flux: reported)
     int bvhWidth = 0;            // 0 = the device's default layout
     std::uint32_t poolSize = 0;  // path slots; 0 = automatic
+    std::optional<KernelMode> kernels;  // unset: defaultKernelMode(device is a GPU)
+    int rouletteDepth = 0;       // Russian roulette from this surface interaction on (lib/shade_path.h)
     bool progress = false;       // progress line on stderr
     std::vector<Roi> rois;       // regions whose mean luminance is tracked batch by batch
     std::function<void(const BatchProgress&)> onBatch;  // optional
@@ -81,6 +84,7 @@ struct RenderResult {
     double bvhSeconds = 0.0, kernelBuildSeconds = 0.0;
     int bvhWidth = 0;
     std::uint32_t poolSize = 0;
+    KernelMode kernelMode = KernelMode::Wavefront;
     EmissionMethod method = EmissionMethod::Uniform;
     nlohmann::json emission;          // the strategy's report
     double emittedFluxPerPath = 0.0;  // lm (EmissionStrategy::emittedFluxPerPath)

@@ -8,9 +8,23 @@
 
 namespace fen {
 
+KernelMode parseKernelMode(const std::string& s)
+{
+    if (s == "wavefront")
+        return KernelMode::Wavefront;
+    if (s == "fused")
+        return KernelMode::Fused;
+    throw Error(cat("--kernels '", printable(s, 40), "': expected wavefront or fused"));
+}
+
+std::string kernelModeName(KernelMode m) { return m == KernelMode::Fused ? "fused" : "wavefront"; }
+
+KernelMode defaultKernelMode(bool gpu) { return gpu ? KernelMode::Wavefront : KernelMode::Fused; }
+
 Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy,
-                     Film& film, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool)
-    : ctx_(ctx), strategy_(strategy), film_(film), pool_(pool)
+                     Film& film, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
+                     KernelMode mode)
+    : ctx_(ctx), mode_(mode), strategy_(strategy), film_(film), pool_(pool)
 {
     paramsBuf_ = ctx.buffer(CL_MEM_READ_ONLY, sizeof(dev::RenderParams), "render parameters");
     counters_ = ctx.buffer(CL_MEM_READ_WRITE, FEN_CTR_COUNT * 8, "counters");
@@ -25,6 +39,18 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     auto connectDefs = defs;
     if (strategy.learns())
         connectDefs.push_back("FEN_EMISSION_STATS=1");
+    const cl::Buffer* pixelScale = strategy.statsPixelScale();
+    if (pixelScale)
+        connectDefs.push_back("FEN_STATS_PIXEL_SCALE=1");
+    else
+        pixelScale = &(noPixelScale_ = ctx.buffer(CL_MEM_READ_ONLY, 4, "no pixel scale"));
+    if (mode == KernelMode::Fused) {
+        auto fusedDefs = connectDefs;
+        fusedDefs.push_back("FEN_FUSED=1");
+        fused_ = cl::Kernel(ctx.program(strategy.emitProgram(), fusedDefs), "trace_fused");
+        // Enough work-items to keep every compute unit busy while the last chunks drain.
+        fusedItems_ = std::size_t{std::max<cl_uint>(1, ctx.info().computeUnits)} * 16;
+    }
     emit_ = cl::Kernel(ctx.program(strategy.emitProgram(), defs), "emit_paths");
     intersect_ = cl::Kernel(ctx.program("intersect.cl", defs), "intersect_paths");
     shade_ = cl::Kernel(ctx.program("shade.cl", defs), "shade_paths");
@@ -32,6 +58,15 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     cameraPass_ = cl::Kernel(ctx.program("camera_pass.cl", defs), "camera_pass");
     const DeviceBvh& b = scene.bvh();
     strategy.bindEmitArgs(emit_, 3);  // checks the arity: the strategy's arguments are the last
+    if (mode == KernelMode::Fused) {
+        cl_uint a = 0;
+        const cl::Buffer* fusedArgs[] = {&paramsBuf_, &counters_, &b.nodes(), &b.packets(),
+                                         &scene.primMaterial(), &scene.materials(), &cameraBuf_,
+                                         &film.accumulators(), &strategy.cellStats(), pixelScale};
+        for (const cl::Buffer* buf : fusedArgs)
+            fused_.setArg(a++, *buf);
+        strategy.bindEmitArgs(fused_, a);  // the strategy's arguments last; checks the arity
+    }
     emit_.setArg(0, paramsBuf_);
     emit_.setArg(1, counters_);
     emit_.setArg(2, paths_);
@@ -39,7 +74,7 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, hits_, scene.primMaterial(), scene.materials(),
                        cameraBuf_, connections_, counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
-                       scene.materials(), film.accumulators(), strategy.cellStats(), counters_);
+                       scene.materials(), film.accumulators(), strategy.cellStats(), *pixelScale, counters_);
     ocl::setKernelArgs(cameraPass_, paramsBuf_, cameraBuf_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), sky.theta, sky.phi, sky.values, film.cameraImage(), counters_);
     warmUp();
@@ -58,6 +93,8 @@ void Wavefront::warmUp()
     q.enqueueFillBuffer(counters_, cl_ulong(0), 0, FEN_CTR_COUNT * 8);
     for (auto* k : {&emit_, &intersect_, &shade_, &connect_})
         ocl::launch(ctx_, *k, "warm-up", pool_);
+    if (mode_ == KernelMode::Fused)
+        ocl::launch(ctx_, fused_, "warm-up", fusedItems_, 1);  // path_end 0: no path
     ocl::launch(ctx_, cameraPass_, "warm-up", film_.pixels());
     q.finish();
     ctx_.stats().reset();
@@ -72,6 +109,10 @@ void Wavefront::beginBatch()
 void Wavefront::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
                     const std::function<void(std::uint64_t, std::uint64_t)>& progress)
 {
+    if (mode_ == KernelMode::Fused) {
+        runFused(base, count, counts, progress);
+        return;
+    }
     auto& q = ctx_.queue();
     const std::uint64_t end = base + count;
     params_.path_end = end;
@@ -102,6 +143,34 @@ void Wavefront::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts
             progress(paths, alive + started);
         if (alive == 0 && next >= end)
             break;
+    }
+}
+
+// In launches of at most 2^20 paths (about a second on two cores): progress stays live and an
+// interrupt waits for little.
+void Wavefront::runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+                         const std::function<void(std::uint64_t, std::uint64_t)>& progress)
+{
+    auto& q = ctx_.queue();
+    constexpr std::uint64_t kLaunch = std::uint64_t{1} << 20;
+    std::uint64_t ctr[FEN_CTR_COUNT] = {};
+    q.enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof ctr, ctr);
+    std::uint64_t extensionBefore = ctr[FEN_CTR_EXTENSION_RAYS];
+    for (std::uint64_t done = 0; done < count;) {
+        const std::uint64_t n = std::min(kLaunch, count - done);
+        params_.path_end = base + done + n;
+        params_.pool_size = pool_;
+        q.enqueueWriteBuffer(paramsBuf_, CL_FALSE, 0, sizeof params_, &params_);
+        const std::uint64_t first = base + done;
+        q.enqueueWriteBuffer(counters_, CL_FALSE, FEN_CTR_NEXT_PATH * 8, 8, &first);
+        ocl::launch(ctx_, fused_, "trace_fused", fusedItems_, 1);
+        q.enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof ctr, ctr);
+        const std::uint64_t rays = ctr[FEN_CTR_EXTENSION_RAYS] - extensionBefore;
+        extensionBefore = ctr[FEN_CTR_EXTENSION_RAYS];
+        counts.extensionRays += rays;
+        done += n;
+        if (progress)
+            progress(n, rays);
     }
 }
 

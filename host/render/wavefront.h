@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "cl/context.h"
 #include "emission/strategy.h"
@@ -18,6 +19,15 @@
 #include "shared/fen_render.h"
 
 namespace fen {
+
+// How the stages run: as the wavefront (four kernels an iteration over a pool of path slots), or
+// fused (one kernel; each work-item runs whole paths: lib/fused_kernel.h). Both give bit-identical
+// images; which is faster depends on the device (README "Kernels").
+enum class KernelMode { Wavefront, Fused };
+KernelMode parseKernelMode(const std::string& s);  // wavefront | fused
+std::string kernelModeName(KernelMode m);
+// The default: fused on a CPU, the wavefront on a GPU (measured: README "Kernels").
+KernelMode defaultKernelMode(bool gpu);
 
 // What a batch's counters say (summed over the iterations of the batch).
 struct BatchCounts {
@@ -30,7 +40,9 @@ struct BatchCounts {
 class Wavefront {
 public:
     Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy, Film& film,
-              const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool);
+              const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
+              KernelMode mode = KernelMode::Wavefront);
+    KernelMode mode() const { return mode_; }
 
     std::uint32_t pool() const { return pool_; }
     double kernelBuildSeconds() const { return buildSeconds_; }
@@ -48,14 +60,19 @@ public:
 
 private:
     void warmUp();
+    void runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+                  const std::function<void(std::uint64_t, std::uint64_t)>& progress);
     ocl::Context& ctx_;
+    KernelMode mode_;
+    std::size_t fusedItems_ = 0;
     EmissionStrategy& strategy_;
     Film& film_;
     dev::RenderParams params_{};
     std::uint32_t pool_;
     std::uint64_t extensionRays_ = 0;  // of the batch so far
     cl::Buffer paramsBuf_, counters_, paths_, hits_, connections_, cameraBuf_;
-    cl::Kernel emit_, intersect_, shade_, connect_, cameraPass_;
+    cl::Buffer noPixelScale_;  // bound when the strategy weighs no statistics by pixel
+    cl::Kernel emit_, intersect_, shade_, connect_, cameraPass_, fused_;
     double buildSeconds_ = 0.0;
 };
 

@@ -52,4 +52,9 @@ kernel void emit_paths(global const RenderParams* params, volatile global ulong*
 #endif
 }
 
+/* The fused kernel uses the same emitter (built with -DFEN_FUSED by the host: lib/fused_kernel.h). */
+#ifdef FEN_FUSED
+#include "lib/fused_kernel.h"
+#endif
+
 #endif /* FEN_EMIT_KERNEL_H */

@@ -37,6 +37,7 @@
     X(RenderParams, fixed_scale) \
     X(RenderParams, stats_scale) \
     X(RenderParams, batch)   \
+    X(RenderParams, rr_depth) \
     X(SourceParams, sky_scale) \
     X(SourceParams, alias_shift) \
     X(PortalParams, overlap) \

@@ -106,12 +106,13 @@ typedef struct {
     fen_u32 pool_size;
     fen_u32 camera_spp;      /* camera-pass samples per pixel in this batch */
     fen_u32 batch;           /* batch number, for the camera pass's random numbers */
-    fen_u32 pad0;
+    fen_u32 rr_depth;        /* Russian roulette from this surface interaction on (lib/shade_path.h) */
 } RenderParams;
 FEN_ASSERT_SIZE(RenderParams, 80);
 FEN_ASSERT_OFFSET(RenderParams, path_end, 32);
 FEN_ASSERT_OFFSET(RenderParams, seed, 40);
 FEN_ASSERT_OFFSET(RenderParams, batch, 72);
+FEN_ASSERT_OFFSET(RenderParams, rr_depth, 76);
 
 FEN_NS_END
 

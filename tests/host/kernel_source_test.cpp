@@ -27,7 +27,9 @@ TEST(KernelSource, NestedIncludesOnceWithLineMarkers)
                                    {"lib/a.h", "#include \"lib/b.h\"\nint a;\n"},
                                    {"lib/b.h", "int b;\n"}});
     const std::string out = ocl::resolveKernelSource("main.cl", reader);
+    // Every program starts by turning contraction off (kernel_source.cpp says why).
     EXPECT_EQ(out,
+              "#pragma OPENCL FP_CONTRACT OFF\n"
               "#line 1 \"kernels/main.cl\"\n"
               "#line 1 \"kernels/lib/a.h\"\n"
               "#line 1 \"kernels/lib/b.h\"\n"

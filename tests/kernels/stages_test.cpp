@@ -71,6 +71,7 @@ struct Stages {
         cl::Buffer accum = ctx.buffer(CL_MEM_READ_WRITE, accZero.size() * 8, "accum", accZero.data());
         std::vector<std::uint64_t> statsZero(parts * FEN_CELL_STATS_WORDS, 0);
         cl::Buffer stats = ctx.buffer(CL_MEM_READ_WRITE, statsZero.size() * 8, "cell stats", statsZero.data());
+        cl::Buffer noScale = ctx.buffer(CL_MEM_READ_ONLY, 4, "no pixel scale");
         const auto defs = ds.defines();
         auto connectDefs = defs;
         if (statsScale > 0.0f)
@@ -82,7 +83,7 @@ struct Stages {
         ocl::setKernelArgs(shade, params, paths, hits, ds.primMaterial(), ds.materials(), camBuf, conns,
                            counters);
         ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.primMaterial(),
-                           ds.materials(), accum, stats, counters);
+                           ds.materials(), accum, stats, noScale, counters);
         ocl::launch(ctx, isect, "intersect_paths", n);
         ocl::launch(ctx, shade, "shade_paths", n);
         ocl::launch(ctx, connect, "connect_paths", n);

@@ -20,6 +20,7 @@ RenderResult renderRoom(ocl::Context& ctx, std::uint32_t seed, std::uint32_t poo
     s.paths = 1u << 20;
     s.seed = seed;
     s.poolSize = pool;
+    s.kernels = KernelMode::Wavefront;  // the pool is the wavefront's (fused: fused_test.cpp)
     Renderer r(ctx, scene, sky, scene.cameras.at(0), 96, 72, s);
     return r.render();
 }

@@ -1,0 +1,73 @@
+/* fused_kernel.h — the whole light path in one kernel, for CPU devices (README "Kernels"): each
+ * work-item takes path indices FEN_FUSED_CHUNK at a time from counters[FEN_CTR_NEXT_PATH] (so
+ * the work balances whatever the paths' lengths) and runs each path to its end -- emit,
+ * intersect, shade, connect -- with the path in registers, where the wavefront writes it to
+ * memory four times a bounce and launches four kernels an iteration.
+ *
+ * It is built from the strategy's emission file with -DFEN_FUSED (lib/emit_kernel.h includes it
+ * there, after FEN_EMITTER_* are defined) and calls the functions the wavefront stages call:
+ * the emitter, closest_surface() (lib/surface_hit.h), shade_path() (lib/shade_path.h) and
+ * connect_path() (lib/connect_path.h). A path's random numbers are keyed by its index and
+ * depth, and every program is compiled without contraction (cl/kernel_source.cpp), so a path
+ * computes the same numbers here as there; pixels and statistics are integer sums. Hence the
+ * image is bit-identical to the wavefront's (tests/render/fused_test.cpp).
+ * Counters: emitted paths, extension and shadow rays, added once per work-item at its end.
+ */
+#ifndef FEN_FUSED_KERNEL_H
+#define FEN_FUSED_KERNEL_H
+
+#include "lib/connect_path.h"
+#include "lib/shade_path.h"
+#include "lib/surface_hit.h"
+
+#define FEN_FUSED_CHUNK 8
+
+kernel void trace_fused(global const RenderParams* params, volatile global ulong* counters,
+                        global const BvhNode* nodes, global const TriPacket4* packets,
+                        global const uint* prim_material, global const DevMaterial* materials,
+                        global const DevCamera* cam, volatile global ulong* accum,
+                        volatile global ulong* cell_stats, global const float* stats_pixel_scale,
+                        FEN_EMITTER_ARGS)
+{
+    const FEN_EMITTER_TYPE emitter = FEN_EMITTER_MAKE;
+    ulong emitted = 0, extension = 0, shadow = 0;
+    for (;;) {
+        const ulong first = atom_add(counters + FEN_CTR_NEXT_PATH, (ulong)FEN_FUSED_CHUNK);
+        if (first >= params->path_end)
+            break;
+        const ulong last = min(first + (ulong)FEN_FUSED_CHUNK, params->path_end);
+        for (ulong path = first; path < last; ++path) {
+            PathState p;
+#if FEN_EMITTER_REJECTS
+            if (!FEN_EMITTER_EMIT(params, &emitter, path, &p))
+                continue;
+#else
+            FEN_EMITTER_EMIT(params, &emitter, path, &p);
+#endif
+            ++emitted;
+            for (;;) {
+                ++extension;
+                const SurfaceHit h = closest_surface(nodes, packets, p.org.xyz, p.dir.xyz);
+                if (as_uint(h.normal.w) == FEN_INVALID_ID)
+                    break;
+                Connection c;
+                const int alive = shade_path(params, &p, &h, prim_material, materials, cam, &c, counters);
+                if (as_uint(c.org.w) != FEN_INVALID_ID) {
+                    connect_path(params, &c, nodes, packets, prim_material, materials, accum, cell_stats,
+                                 stats_pixel_scale, counters);
+                    ++shadow;
+                }
+                if (!alive)
+                    break;
+            }
+        }
+    }
+    if (emitted)
+        atom_add(counters + FEN_CTR_EMITTED, emitted);
+    if (extension)
+        atom_add(counters + FEN_CTR_EXTENSION_RAYS, extension);
+    if (shadow)
+        atom_add(counters + FEN_CTR_SHADOW_RAYS, shadow);
+}
+
+#endif /* FEN_FUSED_KERNEL_H */
