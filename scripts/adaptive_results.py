@@ -47,6 +47,7 @@ ALTERNATIVES = [  # (label, options); the defaults: see README "Adaptive emissio
     ("first pass 16384 paths", ["--adaptive-first-pass", "16384"]),
     ("first pass 262144 paths", ["--adaptive-first-pass", "262144"]),
     ("batches weigh alike", ["--adaptive-weights", "equal"]),
+    ("target: relative error per pixel", ["--adaptive-target", "relative"]),
 ]
 SCENES = [  # (name, file, error key, extra options)
     ("room", "scenes/room.gltf", "noise_std_err_cd_m2", []),
@@ -139,6 +140,7 @@ def main():
     lines.append(header + " cells (room) |")
     lines.append("|---|" + "---|---|" * len(SCENES) + "---|")
     base = {}
+    chart = []  # (label, {scene: relative efficiency})
     for label, opts in ALTERNATIVES:
         row = "| %s |" % label
         cells = ""
@@ -156,11 +158,46 @@ def main():
             if label == "defaults":
                 base[sname] = eff
             row += " %s | %.2fx |" % (" / ".join("%.3g" % e for e in errs), eff / base[sname])
+            if not chart or chart[-1][0] != label:
+                chart.append((label, {}))
+            chart[-1][1][sname] = eff / base[sname]
         lines.append(row + " %s |" % cells)
     lines.append("")
+    if draw_chart(chart):
+        lines.append("![the defaults against alternatives](adaptive_options.png)\n")
     with open("docs/results/adaptive_data.md", "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
+
+
+def draw_chart(chart):
+    """Relative efficiency of each alternative, per scene, as horizontal bars (log scale):
+    docs/results/adaptive_options.png. Needs matplotlib (python3-matplotlib); skipped without."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("adaptive_results.py: no matplotlib: the chart is not drawn", file=sys.stderr)
+        return False
+    scenes = [s[0] for s in SCENES]
+    fig, ax = plt.subplots(figsize=(8, 0.42 * len(chart) + 1.2))
+    h = 0.8 / len(scenes)
+    for k, sname in enumerate(scenes):
+        ys = [i + k * h for i in range(len(chart))]
+        ax.barh(ys, [c[1].get(sname, float("nan")) for c in chart], height=h, label=sname)
+    ax.set_yticks([i + 0.4 - h / 2 for i in range(len(chart))])
+    ax.set_yticklabels([c[0] for c in chart], fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xscale("log")
+    ax.axvline(1.0, color="black", lw=0.8)
+    ax.set_xlabel("efficiency 1 / (error² × s) relative to the defaults (> 1: better)")
+    ax.legend(fontsize=8)
+    ax.grid(True, axis="x", which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig("docs/results/adaptive_options.png", dpi=100)
+    plt.close(fig)
+    return True
 
 
 if __name__ == "__main__":

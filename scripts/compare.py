@@ -6,8 +6,9 @@ way against a reference, a CSV, and charts (DESIGN.md §5: every claim charted a
                                [--roi x0,y0,x1,y1] [--width W] [--seed S] [--out DIR] [--camera NAME]
                                [--reference-method adaptive] [--reference-time SECONDS]
 
-A method is METHOD[/BASE][@PORTALS]: `portal@gap` is portal emission through the node `gap`,
-`adaptive/portal` adaptive emission over the scene's portals, `adaptive/portal@gap` over the gap.
+A method is METHOD[/BASE][@PORTALS][+OPTION=VALUE...]: `portal@gap` is portal emission through the
+node `gap`, `adaptive/portal` adaptive emission over the scene's portals, `adaptive/portal@gap` over
+the gap, `adaptive+adaptive-defensive=0.3` adaptive with `--adaptive-defensive 0.3`.
 
 Without --reference, a long render of an unbiased method (--reference-method, default adaptive,
 --reference-time, default 10 x --time, seed 1000) is made once and cached in out/compare/cache/,
@@ -34,8 +35,15 @@ import sys
 
 
 def parse_method(spec):
-    """METHOD[/BASE][@PORTALS] -> (label, fenestra arguments)."""
-    rest, _, portals = spec.partition("@")
+    """METHOD[/BASE][@PORTALS][+OPTION=VALUE...] -> (label, fenestra arguments)."""
+    spec_main, *options = spec.split("+")
+    extra = []
+    for o in options:
+        k, eq, v = o.partition("=")
+        if not k or not eq:
+            sys.exit("compare.py: --methods: '%s': an option is +NAME=VALUE" % spec)
+        extra += ["--" + k, v]
+    rest, _, portals = spec_main.partition("@")
     method, _, base = rest.partition("/")
     if method not in ("uniform", "portal", "adaptive"):
         sys.exit("compare.py: --methods: '%s': expected uniform, portal or adaptive" % spec)
@@ -46,7 +54,7 @@ def parse_method(spec):
         args += ["--base", base]
     if portals:
         args += ["--portals", portals]
-    return spec, args
+    return spec, args + extra
 
 
 def run(cmd):
@@ -108,7 +116,7 @@ def main():
     results = []
     for spec in [m for m in a.methods.split(",") if m]:
         label, margs = parse_method(spec)
-        path = os.path.join(out, label.replace("/", "_over_").replace("@", "_at_") + ".exr")
+        path = os.path.join(out, label.replace("/", "_over_").replace("@", "_at_").replace("+", "_").replace("=", "") + ".exr")
         run([a.fenestra, "render", a.scene, "--out", path, "--time", str(a.time), "--seed", str(a.seed),
              "--reference", ref] + margs + common)
         results.append((label, path, load(os.path.splitext(path)[0] + ".json")))
@@ -133,6 +141,7 @@ def main():
             "bias_cd_m2": j["bias_cd_m2"], "bias_sigmas": j["bias_cd_m2"] / se if se > 0 else 0.0,
             "biased": abs(j["bias_cd_m2"]) > 4.0 * se,
             "noise_cd_m2": j["noise_std_err_cd_m2"], "rmse_cd_m2": j["rmse_cd_m2"],
+            "rms_cd_m2": j["rms_luminance_cd_m2"], "paths_per_second": j["paths_per_second"],
             "efficiency": 1.0 / (j["rmse_cd_m2"] ** 2 * seconds),
             "png": os.path.splitext(path)[0] + ".png", "error_png": os.path.splitext(path)[0] + ".error.png"})
     unbiased = [s["efficiency"] for s in summary if not s["biased"]] or [s["efficiency"] for s in summary]
@@ -140,7 +149,11 @@ def main():
     for s in summary:
         s["relative_efficiency"] = s["efficiency"] / best
     with open(os.path.join(out, "summary.json"), "w") as f:
+        ref_j = load(ref_json) if os.path.exists(ref_json) else {}
         json.dump({"scene": a.scene, "reference": ref, "reference_mean_std_err_cd_m2": ref_se, "roi": a.roi,
+                   "reference_json": {k: ref_j.get(k) for k in ("method", "paths", "seconds", "seed",
+                                                                 "mean_luminance_cd_m2", "noise_std_err_cd_m2",
+                                                                 "device", "width", "height")},
                    "seconds_per_method": a.time, "methods": summary}, f, indent=1)
     lines = ["| method | paths | mean ± s.e. (cd/m²) | bias vs reference | noise | RMSE | efficiency (best = 1) |",
              "|---|---|---|---|---|---|---|"]

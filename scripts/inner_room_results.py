@@ -58,12 +58,14 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--seconds", type=float, default=120.0)
     ap.add_argument("--reference-seconds", type=float, default=900.0)
+    ap.add_argument("--reuse-reference", action="store_true",
+                    help="keep out/inner_room/reference.exr from an earlier run (same settings)")
     ap.add_argument("--table-only", action="store_true",
                     help="rewrite the table from the JSON reports of an earlier run")
     a = ap.parse_args()
     os.makedirs(OUT, exist_ok=True)
     ref = render("reference", ["--method", "portal"], a.reference_seconds, 1000,
-                 table_only=a.table_only)
+                 table_only=a.table_only or a.reuse_reference)
     ref_exr = os.path.join(OUT, "reference.exr")
     runs = [
         ("uniform", "uniform", []),

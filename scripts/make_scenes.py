@@ -450,6 +450,36 @@ def courtyard_scene(path):
                    "sun_altitude_deg": 40.0, "sun_azimuth_deg": 180.0})
 
 
+def slit_scene(path):
+    """scenes/slit.gltf — a rare light path: a closed 4 x 4 x 2.8 m room lit only through an open
+    slit, 2 cm wide and 1 m tall, in its south wall (node `slit`, no glass, extras.portal = true).
+
+    Room x in [0, 4], z in [0, 4], slit x in [1.99, 2.01], y in [0.8, 1.8] in the wall z = 4. No
+    ground and nothing else outside: every path that lights the room passes the slit, which takes
+    about 1/1000 of the emission disk's area. The sun due south at altitude 30 deg, 70 klux, draws
+    a narrow stripe on the floor (z from about 0.9 to 2.6); a CIE clear sky (type 12) for it,
+    zenith luminance 3500 cd/m^2. Floor (0.35, 0.3, 0.25), walls 0.7, ceiling 0.8. The camera in
+    the north-west corner looks at the stripe.
+    """
+    g = Gltf("fenestra scripts/make_scenes.py")
+    W, D, H = 4.0, 4.0, 2.8
+    sx0, sx1, sy0, sy1 = 1.99, 2.01, 0.8, 1.8
+    floor = g.material("floor", (0.35, 0.3, 0.25))
+    wall = g.material("wall", (0.7, 0.7, 0.7))
+    ceiling = g.material("ceiling", (0.8, 0.8, 0.8))
+    g.mesh_node("floor", rect_y(0, W, 0, D, 0.0), floor)
+    g.mesh_node("ceiling", rect_y(0, W, 0, D, H), ceiling)
+    g.mesh_node("walls", rect_x(0, W, 0, H, 0.0) + rect_z(0, D, 0, H, 0.0) + rect_z(0, D, 0, H, W), wall)
+    g.mesh_node("south_wall", wall_with_hole(0, W, 0, H, D, sx0, sx1, sy0, sy1), wall)
+    # The opening itself, as a portal: an invisible node would need a material; an open slit is
+    # marked by its frame's hull instead (4 thin strips around it, in the wall's plane).
+    g.mesh_node("slit", frame_x(sx0, sx1, sy0, sy1, D, 0.005), wall, extras={"portal": "hull"})
+    g.sun("sun", 30.0, 180.0, 70000.0)
+    g.camera("camera", (0.4, 1.6, 0.4), (2.2, 0.0, 2.2), 60.0, 4.0 / 3.0)
+    g.write(path, {"type": "cie", "cie_type": 12, "zenith_luminance": 3500.0,
+                   "sun_altitude_deg": 30.0, "sun_azimuth_deg": 180.0})
+
+
 def main():
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
     os.makedirs(root, exist_ok=True)
@@ -459,6 +489,7 @@ def main():
     house_scene(os.path.join(root, "house.gltf"), 0.2)
     house_scene(os.path.join(root, "house_snow.gltf"), 0.9)
     courtyard_scene(os.path.join(root, "courtyard.gltf"))
+    slit_scene(os.path.join(root, "slit.gltf"))
 
 
 if __name__ == "__main__":

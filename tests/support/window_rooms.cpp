@@ -109,7 +109,7 @@ Measured measure(ocl::Context& ctx, const Scene& scene, EmissionSettings emissio
     const RenderResult res = r.render();
     EXPECT_EQ(res.counts.badContributions, 0u);
     EXPECT_EQ(res.counts.overflows, 0u);
-    return {res.roiMean(0), res.roiMeanStdErr(0)};
+    return {res.roiMean(0), res.roiMeanStdErr(0), res.emission};
 }
 
 Measured measure(ocl::Context& ctx, const Scene& scene, EmissionMethod method, std::uint64_t paths,

@@ -19,6 +19,7 @@ std::string windowRoomName(Windows w);
 
 struct Measured {
     double mean, se;
+    nlohmann::json emission;  // the strategy's report
 };
 
 // Renders `scene` with `settings` (paths, rois[0] and the seed shifted by FEN_TEST_SEED are
