@@ -105,6 +105,8 @@ int main(int argc, char** argv)
     renderCmd->add_option("--device", render.device, "OpenCL device: index or name substring");
     renderCmd->add_option("--max-bounces", render.maxBounces, "Surface interactions per path: a guard against endless paths, Russian roulette ends them (default 1024)");
     renderCmd->add_option("--roi", render.roi, "Region x0,y0,x1,y1 for the statistics (default: whole image)");
+    renderCmd->add_option("--region", render.regions,
+                          "Named region NAME=x0,y0,x1,y1 also reported in the JSON (regions.NAME); repeatable");
     renderCmd->add_option("--reference", render.referencePath, "Reference EXR: report RMSE and relative MSE");
     renderCmd->add_option("--method", render.method,
                           "Emission strategy: uniform (default), portal or adaptive");
@@ -150,7 +152,7 @@ int main(int argc, char** argv)
     renderCmd->add_option("--kernels", render.kernels,
                           "How the stages run: fused (one kernel per path, default on a CPU) or wavefront (default on a GPU)");
     renderCmd->add_option("--roulette-depth", render.rouletteDepth,
-                          "Russian roulette from this surface interaction on; before it every path goes on (default 0)");
+                          "Russian roulette from this surface interaction on; before it every path goes on (default 3)");
     renderCmd->add_option("--pool", render.poolSize, "Path slots on the device (default: 2^16 CPU, 2^21 GPU)");
     renderCmd->add_option("--exposure", render.exposure, "PNG preview exposure (default: ROI mean to mid-grey)");
     renderCmd->add_option("--checkpoint", render.checkpointPath,

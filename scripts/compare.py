@@ -5,6 +5,7 @@ way against a reference, a CSV, and charts (DESIGN.md §5: every claim charted a
     python3 scripts/compare.py SCENE.gltf --methods uniform,portal,adaptive --time 60 [--reference R.exr]
                                [--roi x0,y0,x1,y1] [--width W] [--seed S] [--out DIR] [--camera NAME]
                                [--reference-method adaptive] [--reference-time SECONDS]
+                               [--region NAME=x0,y0,x1,y1 ...]
 
 A method is METHOD[/BASE][@PORTALS][+OPTION=VALUE...]: `portal@gap` is portal emission through the
 node `gap`, `adaptive/portal` adaptive emission over the scene's portals, `adaptive/portal@gap` over
@@ -21,6 +22,8 @@ Writes to --out (default out/compare/<scene name>/):
   error_vs_time.png    RMSE (solid) and the noise estimate (dashed) against seconds, log-log
   efficiency.png       efficiency, the best unbiased method = 1; biased methods hatched
   strip.png            each method's image (preview) and its error map against the reference
+  regions.md           with --region: each named region's mean, bias (in combined standard errors) and
+                       RMSE per method -- a method can be right on the whole image and wrong on a wall
 
 Needs matplotlib and numpy (Debian: python3-matplotlib, installed by scripts/setup.sh).
 """
@@ -83,6 +86,7 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--out")
     ap.add_argument("--fenestra", default="build/fenestra")
+    ap.add_argument("--region", action="append", default=[], help="NAME=x0,y0,x1,y1, repeatable")
     a = ap.parse_args()
 
     name = os.path.splitext(os.path.basename(a.scene))[0]
@@ -108,7 +112,7 @@ def main():
         if not os.path.exists(ref):
             _, margs = parse_method(a.reference_method)
             run([a.fenestra, "render", a.scene, "--out", ref, "--time", str(ref_time), "--seed", "1000"]
-                + margs + common)
+                + margs + common + sum((["--region", g] for g in a.region), []))
     ref_json = os.path.splitext(ref)[0] + ".json"
     ref_se = load(ref_json)["mean_std_err_cd_m2"] if os.path.exists(ref_json) else 0.0
 
@@ -118,7 +122,7 @@ def main():
         label, margs = parse_method(spec)
         path = os.path.join(out, label.replace("/", "_over_").replace("@", "_at_").replace("+", "_").replace("=", "") + ".exr")
         run([a.fenestra, "render", a.scene, "--out", path, "--time", str(a.time), "--seed", str(a.seed),
-             "--reference", ref] + margs + common)
+             "--reference", ref] + margs + common + sum((["--region", g] for g in a.region), []))
         results.append((label, path, load(os.path.splitext(path)[0] + ".json")))
 
     with open(os.path.join(out, "compare.csv"), "w", newline="") as f:
@@ -165,6 +169,26 @@ def main():
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
+    if a.region:
+        # The reference's own region errors when it was rendered with the regions (else 0).
+        ref_regions = load(ref_json).get("regions", {}) if os.path.exists(ref_json) else {}
+        rl = ["| region | reference mean (cd/m²) | " + " | ".join("%s: mean, bias, RMSE" % s["method"] for s in summary) + " |",
+              "|---|---|" + "---|" * len(summary)]
+        for g in a.region:
+            gname = g.partition("=")[0]
+            cells, ref_mean = [], None
+            for _, _, j in results:
+                r = j["regions"][gname]
+                ref_mean = r["reference_mean_luminance_cd_m2"]
+                se = math.hypot(r["mean_std_err_cd_m2"], ref_regions.get(gname, {}).get("mean_std_err_cd_m2", 0.0))
+                sig = r["bias_cd_m2"] / se if se > 0 else 0.0
+                cells.append("%.4g, %+.1f %% (%+.1f σ)%s, %.3g" % (
+                    r["mean_luminance_cd_m2"], 100.0 * r["bias_cd_m2"] / ref_mean if ref_mean else 0.0, sig,
+                    " **biased**" if abs(sig) > 4.0 else "", r["rmse_cd_m2"]))
+            rl.append("| %s (%s) | %.4g | %s |" % (gname, g.partition("=")[2], ref_mean, " | ".join(cells)))
+        with open(os.path.join(out, "regions.md"), "w") as f:
+            f.write("\n".join(rl) + "\n")
+        print("\n".join(rl))
     charts(out, results, summary)
 
 

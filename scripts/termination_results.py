@@ -24,7 +24,7 @@ import sys
 
 OUT = "out/termination"
 SCENES = [  # (label, file, options)
-    ("inner room, rectangle", "scenes/inner_room.gltf", ["--roi", "280,160,520,360"]),
+    ("inner room, rectangle", "scenes/inner_room.gltf", ["--roi", "140,80,260,180"]),  # the rectangle at 320 x 240
     ("room", "scenes/room.gltf", []),
     ("bay window", "scenes/bay_window.gltf", []),
 ]

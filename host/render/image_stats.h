@@ -17,8 +17,8 @@ struct Roi {
     std::size_t pixels() const { return static_cast<std::size_t>(x1 - x0) * (y1 - y0); }
 };
 
-// "x0,y0,x1,y1", or the whole image when spec is empty. Errors name --roi.
-Roi parseRoi(const std::string& spec, int width, int height);
+// "x0,y0,x1,y1", or the whole image when spec is empty. Errors name `option`.
+Roi parseRoi(const std::string& spec, int width, int height, const std::string& option = "--roi");
 
 struct RoiStats {
     std::size_t pixels = 0;

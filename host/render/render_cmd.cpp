@@ -199,6 +199,18 @@ int runRender(const RenderOptions& opt)
     int width = 0, height = 0;
     resolveImageSize(camera, opt.width, opt.height, &width, &height);
     const Roi roi = parseRoi(opt.roi, width, height);
+    // Named regions: a work plane, a wall -- each reported like the ROI (regions.NAME in the JSON).
+    std::vector<std::pair<std::string, Roi>> regions;
+    for (const std::string& spec : opt.regions) {
+        const std::size_t eq = spec.find('=');
+        const std::string name = spec.substr(0, eq == std::string::npos ? 0 : eq);
+        if (eq == std::string::npos || name.empty() || name.size() > 64)
+            throw Error(cat("--region '", printable(spec, 80), "': expected NAME=x0,y0,x1,y1"));
+        for (const auto& [other, _] : regions)
+            if (other == name)
+                throw Error(cat("--region ", printable(name, 64), ": given twice"));
+        regions.emplace_back(name, parseRoi(spec.substr(eq + 1), width, height, "--region " + printable(name, 64)));
+    }
     std::optional<Image> reference;
     if (!opt.referencePath.empty()) {
         reference = readExr(opt.referencePath);
@@ -227,6 +239,8 @@ int runRender(const RenderOptions& opt)
         settings.rouletteDepth = opt.rouletteDepth;
     settings.progress = opt.progress < 0 ? isatty(STDERR_FILENO) != 0 : opt.progress > 0;
     settings.rois = {roi};
+    for (const auto& reg : regions)
+        settings.rois.push_back(reg.second);
     settings.checkpointPath = opt.checkpointPath;
     settings.resumePath = opt.resumePath;
     parseCheckpointEvery(opt.checkpointEvery, &settings);
@@ -331,6 +345,24 @@ int runRender(const RenderOptions& opt)
         j["bias_cd_m2"] = st.meanLuminance_cd_m2 - referenceMean;
         j["reference_mean_luminance_cd_m2"] = referenceMean;
     }
+    nlohmann::json regionsJson = nlohmann::json::object();
+    for (std::size_t k = 0; k < regions.size(); ++k) {
+        const Roi& g = regions[k].second;
+        const RoiStats s = roiStats(r.image, r.stdErrLuminance, reference ? &*reference : nullptr, g);
+        nlohmann::json e = {{"roi", {g.x0, g.y0, g.x1, g.y1}},
+                            {"mean_luminance_cd_m2", s.meanLuminance_cd_m2},
+                            {"mean_std_err_cd_m2", r.roiMeanStdErr(k + 1)},
+                            {"noise_std_err_cd_m2", r.batches >= 2 ? nlohmann::json(s.noiseStdErr_cd_m2)
+                                                                   : nlohmann::json(nullptr)}};
+        if (s.rmse_cd_m2) {
+            const double refMean = roiStats(*reference, {}, nullptr, g).meanLuminance_cd_m2;
+            e["rmse_cd_m2"] = *s.rmse_cd_m2;
+            e["bias_cd_m2"] = s.meanLuminance_cd_m2 - refMean;
+            e["reference_mean_luminance_cd_m2"] = refMean;
+        }
+        regionsJson[regions[k].first] = e;
+    }
+    j["regions"] = regionsJson;
     j["emission"] = r.emission;
     j["progress"] = progress;
     j["counters"] = {{"bad_contributions", n.badContributions},

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace fen {
 
@@ -17,6 +18,7 @@ struct RenderOptions {
     std::string device;
     int maxBounces = 1024;
     std::string roi;                // "x0,y0,x1,y1"
+    std::vector<std::string> regions;  // --region NAME=x0,y0,x1,y1, repeatable
     std::string referencePath;
     std::string method = "uniform";
     std::string portals;            // --portals NAME,NAME

@@ -53,7 +53,9 @@ struct RenderSettings {
     int bvhWidth = 0;            // 0 = the device's default layout
     std::uint32_t poolSize = 0;  // path slots; 0 = automatic
     std::optional<KernelMode> kernels;  // unset: defaultKernelMode(device is a GPU)
-    int rouletteDepth = 0;       // Russian roulette from this surface interaction on (lib/shade_path.h)
+    // Russian roulette from this surface interaction on (lib/shade_path.h). 3: the most efficient
+    // across the inner room, the room and the bay window (docs/results/termination.md).
+    int rouletteDepth = 3;
     bool progress = false;       // progress line on stderr
     std::vector<Roi> rois;       // regions whose mean luminance is tracked batch by batch
     std::function<void(const BatchProgress&)> onBatch;  // optional

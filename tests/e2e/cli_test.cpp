@@ -152,6 +152,26 @@ TEST(CliRender, WritesExrPngAndJson)
     EXPECT_EQ(j2["rel_mse"].get<double>(), 0.0);
 }
 
+TEST(CliRender, NamedRegionsAreReportedLikeTheRoi)
+{
+    const std::string dir = test::tempDir("cli-render-regions");
+    const std::string scene = plateScene().write(dir + "/plate.gltf");
+    const std::string base = "render " + scene + " --out " + dir + "/r.exr --paths 200000 --width 40 --no-progress ";
+    const CliRun r = run(base + "--roi 5,5,30,25 --region same=5,5,30,25 --region all=0,0,40,30");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(slurp(dir + "/r.json"));
+    // A region equal to the ROI reports exactly the ROI's statistics.
+    const auto& same = j["regions"]["same"];
+    EXPECT_EQ(same["mean_luminance_cd_m2"], j["mean_luminance_cd_m2"]);
+    EXPECT_EQ(same["mean_std_err_cd_m2"], j["mean_std_err_cd_m2"]);
+    EXPECT_EQ(same["noise_std_err_cd_m2"], j["noise_std_err_cd_m2"]);
+    EXPECT_EQ(j["regions"]["all"]["roi"], nlohmann::json({0, 0, 40, 30}));
+    EXPECT_NE(j["regions"]["all"]["mean_luminance_cd_m2"], j["mean_luminance_cd_m2"]);
+    expectError(run(base + "--region desk=0,0,50,10"), 1, "--region desk");
+    expectError(run(base + "--region a=0,0,4,4 --region a=1,1,5,5"), 1, "--region a: given twice");
+    expectError(run(base + "--region 0,0,4,4"), 1, "expected NAME=x0,y0,x1,y1");
+}
+
 TEST(CliRender, AFullDiskLosesNothing)
 {
     // A write that fails (FEN_FAIL_WRITE injects ENOSPC into the outputs whose name holds it)

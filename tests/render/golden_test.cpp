@@ -38,6 +38,7 @@ TEST_P(GoldenImage, UnchangedByTheStrategySeam)
     s.emission.overlap = g.overlap;
     s.emission.portalComplement = 0.0;  // the images were made before the complement existed
     s.maxBounces = 64;                  // ... and before the default cap rose to 1024
+    s.rouletteDepth = 0;                // ... and before roulette began at the third interaction
     s.paths = 1048576;
     s.seed = 7;
     Renderer r(*ctx, scene, sky, scene.cameras.at(0), 96, 72, s);
