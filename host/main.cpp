@@ -109,7 +109,7 @@ int main(int argc, char** argv)
                           "Named region NAME=x0,y0,x1,y1 also reported in the JSON (regions.NAME); repeatable");
     renderCmd->add_option("--reference", render.referencePath, "Reference EXR: report RMSE and relative MSE");
     renderCmd->add_option("--method", render.method,
-                          "Emission strategy: uniform (default), portal or adaptive");
+                          "Emission strategy: adaptive (default), uniform or portal");
     renderCmd->add_option("--base", render.base,
                           "With adaptive: the base density it learns over, uniform (default) or portal");
     renderCmd->add_option("--portals", render.portals,

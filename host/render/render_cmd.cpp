@@ -103,7 +103,7 @@ EmissionSettings emissionSettings(const RenderOptions& opt)
     const bool tuned = !opt.adaptiveEstimate.empty() || opt.adaptiveInitialSkyDepth >= 0 || opt.adaptiveMaxSkyDepth >= 0 || opt.adaptiveInitialDepth >= 0 || opt.adaptiveMaxDepth >= 0 ||
                        opt.adaptiveDefensive >= 0.0 || opt.adaptiveDiskShare >= 0.0 || opt.adaptiveSplit >= 0.0 ||
                        opt.adaptiveFirstPass > 0 || opt.adaptiveMaxCells > 0 || opt.adaptivePrior >= 0.0 ||
-                       !opt.adaptiveWeights.empty();
+                       !opt.adaptiveWeights.empty() || !opt.adaptiveTarget.empty();
     if (tuned && !adaptive)
         throw Error("the --adaptive-* options apply to --method adaptive");
     if (opt.adaptiveInitialSkyDepth >= 0)

@@ -20,7 +20,9 @@ struct RenderOptions {
     std::string roi;                // "x0,y0,x1,y1"
     std::vector<std::string> regions;  // --region NAME=x0,y0,x1,y1, repeatable
     std::string referencePath;
-    std::string method = "uniform";
+    // adaptive: unbiased without marking, and the most efficient on every shipped scene
+    // (README "Which method when", docs/results/).
+    std::string method = "adaptive";
     std::string portals;            // --portals NAME,NAME
     std::string portalOverlap = "reject";
     double portalComplement = -1.0; // -1: the default of EmissionSettings

@@ -422,8 +422,13 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     expectError(run("render " + good + out + " --method adaptive --base portal"), 1, "no portals");
     expectError(run("render " + good + out + " --method adaptive --base sideways"), 1, "--method 'sideways'");
     expectError(run("render " + good + out + " --method adaptive --base adaptive"), 1, "--base");
-    expectError(run("render " + good + out + " --base portal"), 1, "--base applies to --method adaptive");
-    expectError(run("render " + good + out + " --adaptive-max-depth 4"), 1, "--method adaptive");
+    expectError(run("render " + good + out + " --method uniform --base portal"), 1, "--base applies to --method adaptive");
+    expectError(run("render " + good + out + " --method uniform --adaptive-max-depth 4"), 1, "--method adaptive");
+    expectError(run("render " + good + out + " --method portal --portals plate --adaptive-target relative"), 1,
+                "--method adaptive");
+    expectError(run("render " + good + out + " --adaptive-target sideways"), 1, "--adaptive-target 'sideways'");
+    // adaptive is the default method: --base alone applies
+    expectError(run("render " + good + out + " --base portal"), 1, "no portals");
     expectError(run("render " + good + out + " --method adaptive --adaptive-max-depth 17"), 1, "--adaptive-max-depth 17");
     expectError(run("render " + good + out + " --method adaptive --adaptive-initial-depth 5 --adaptive-max-depth 3"), 1,
                 "--adaptive-initial-depth 5");
