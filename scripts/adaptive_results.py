@@ -111,7 +111,7 @@ def main():
     # 2. Throughput.
     lines.append("## Throughput, %g s each\n" % a.seconds)
     lines.append("| scene | method | paths/s | rays/s | rays per path | contributions per path | "
-                 "device ns per path: emit / intersect / shade / connect |")
+                 "device ns per path (fused kernel, or emit / intersect / shade / connect) |")
     lines.append("|---|---|---|---|---|---|---|")
     for sname, scene, _, _ in SCENES:
         for label, args in (("uniform", ["--method", "uniform"]),
@@ -123,10 +123,12 @@ def main():
             P = j["paths"]
             k = j["kernels"]
             ns = lambda n: k[n]["device_seconds"] / P * 1e9 if n in k else 0.0
-            lines.append("| %s | %s | %.2fM | %.2fM | %.2f | %.3f | %.0f / %.0f / %.0f / %.0f |" % (
+            stages = ("%.0f" % ns("trace_fused") if "trace_fused" in k else
+                      "%.0f / %.0f / %.0f / %.0f" % (ns("emit_paths"), ns("intersect_paths"), ns("shade_paths"),
+                                                     ns("connect_paths")))
+            lines.append("| %s | %s | %.2fM | %.2fM | %.2f | %.3f | %s |" % (
                 sname, label, j["paths_per_second"] / 1e6, j["rays_per_second"] / 1e6,
-                (j["rays"]["extension"] + j["rays"]["shadow"]) / P, j["rays"]["shadow"] / P,
-                ns("emit_paths"), ns("intersect_paths"), ns("shade_paths"), ns("connect_paths")))
+                (j["rays"]["extension"] + j["rays"]["shadow"]) / P, j["rays"]["shadow"] / P, stages))
     lines.append("")
 
     # 3. Alternatives.

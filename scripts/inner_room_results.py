@@ -17,6 +17,7 @@ them; tested in tests/render/portal_test.cpp) with another seed, so its noise is
 """
 import argparse
 import json
+import math
 import os
 import subprocess
 import sys
@@ -68,7 +69,7 @@ def main():
                  table_only=a.table_only or a.reuse_reference)
     ref_exr = os.path.join(OUT, "reference.exr")
     runs = [
-        ("uniform", "uniform", []),
+        ("uniform", "uniform", ["--method", "uniform"]),
         ("portal (window + door)", "portal_window_door", ["--method", "portal"]),
         ("portal (gap)", "portal_gap", ["--method", "portal", "--portals", "gap"]),
         ("adaptive (no marking)", "adaptive", ["--method", "adaptive"]),
@@ -146,13 +147,30 @@ def main():
     lines.append("- **Adaptive emission without any marking** (the paper's method 2) is %.2fx as efficient "
                  "as the correctly marked portals by the noise estimate and %.2fx by the RMSE against the "
                  "reference (efficiency: 1 / (error² × seconds); the paper's adaptive reached about 0.41x "
-                 "of its portals in RMS²; our target: 0.8x). Over the portals it is %.2fx / %.2fx, and "
-                 "over the wrong gap portal it stays unbiased (mean %.4g ± %.2g against the reference's "
-                 "%.4g) where the gap portal alone is %.1fx too dark."
+                 "of its portals in RMS²; our target: 0.8x). Over the portals it is %.2fx / %.2fx."
                  % (efficiency(ad, "noise_std_err_cd_m2"), efficiency(ad, "rmse_cd_m2"),
-                    efficiency(rows[4][1], "noise_std_err_cd_m2"), efficiency(rows[4][1], "rmse_cd_m2"),
-                    rows[5][1]["mean_luminance_cd_m2"], rows[5][1]["mean_std_err_cd_m2"],
-                    ref["mean_luminance_cd_m2"], w["mean_luminance_cd_m2"] / g["mean_luminance_cd_m2"]))
+                    efficiency(rows[4][1], "noise_std_err_cd_m2"), efficiency(rows[4][1], "rmse_cd_m2")))
+    gap = rows[5][1]
+    z = (gap["mean_luminance_cd_m2"] - ref["mean_luminance_cd_m2"]) / math.hypot(
+        gap["mean_std_err_cd_m2"], ref["mean_std_err_cd_m2"])
+    low = 1.0 - gap["mean_luminance_cd_m2"] / ref["mean_luminance_cd_m2"]
+    if abs(z) <= 4.0:
+        lines.append("- **Adaptive over the wrong gap portal** agrees with the reference (mean %.4g ± %.2g against "
+                     "%.4g, %+.1f σ) where the gap portal alone is %.1fx too dark: its disk share finds the light "
+                     "that bounced in the outer room." % (gap["mean_luminance_cd_m2"], gap["mean_std_err_cd_m2"],
+                                                          ref["mean_luminance_cd_m2"], z,
+                                                          w["mean_luminance_cd_m2"] / g["mean_luminance_cd_m2"]))
+    else:
+        lines.append("- **Adaptive over the wrong gap portal** is %.0f %% low after this time (mean %.4g ± %.2g "
+                     "against %.4g, %+.1f σ), where the gap portal alone is %.0f %% low. Its estimator is unbiased "
+                     "(the test `AdaptiveInnerRoom.TheGapPortalStaysUnbiasedThroughTheDiskShare` checks it at 4 σ "
+                     "on a small budget), but the light the gap portal misses reaches it only through the disk "
+                     "share's 10 %% of the base, as rare paths with large weights: a heavy tail whose large values "
+                     "a short render has mostly not drawn yet, so its mean is low and its standard error "
+                     "underestimated. Over a wrong marking adaptive emission converges, slowly; without a "
+                     "marking it has no such tail." % (100 * low, gap["mean_luminance_cd_m2"],
+                                                       gap["mean_std_err_cd_m2"], ref["mean_luminance_cd_m2"], z,
+                                                       100 * (1 - g["mean_luminance_cd_m2"] / ref["mean_luminance_cd_m2"])))
     lines.append("- Absolute luminances differ from the paper's (its scene's sizes and light are not "
                  "published); the ratios are the comparison.")
     lines.append("")
