@@ -2,22 +2,10 @@
 #include "emission/portal_planes.h"
 
 #include <algorithm>
-#include <cstring>
 
 #include "bvh_build.h"
 
 namespace fen {
-
-namespace {
-
-float asFloat(std::uint32_t u)
-{
-    float f;
-    std::memcpy(&f, &u, sizeof f);
-    return f;
-}
-
-}  // namespace
 
 PortalPlanes makePortalPlanes(const Scene& scene, const std::string& override, int bvhWidth)
 {
@@ -72,7 +60,7 @@ PortalPlanes makePortalPlanes(const Scene& scene, const std::string& override, i
             f.origin = {float(origin.x), float(origin.y), float(origin.z), float((s1 - s0) * (t1 - t0))};
             f.axis_s = {float(S.x), float(S.y), float(S.z), 0.0f};
             f.axis_t = {float(T.x), float(T.y), float(T.z), 0.0f};
-            f.normal = {float(n.x), float(n.y), float(n.z), asFloat(first)};
+            f.normal = {float(n.x), float(n.y), float(n.z), dev::fen_as_float(first)};
             f.triangles = static_cast<std::uint32_t>(pp.triangles.size() - first);
             pp.frames.push_back(f);
             pp.normal.push_back(n);

@@ -1,19 +1,46 @@
-// exr_io.cpp — OpenEXR reading and writing through the Imf C++ API (exr_io.h).
+// exr_io.cpp — OpenEXR encoding and reading through the Imf C++ API (exr_io.h).
 #include "io/exr_io.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImathBox.h>
+#include <cstring>
 #include <exception>
 
 #include "util/error.h"
 
 namespace fen {
 
-void writeExr(const std::string& path, const Image& image)
+namespace {
+
+// An OpenEXR output stream into memory: the file is written, checked and renamed into place by
+// io/output_files.h, not by the library's destructor, which cannot report a failure.
+class MemoryStream : public Imf::OStream {
+public:
+    MemoryStream() : Imf::OStream("memory") {}
+    void write(const char c[], int n) override
+    {
+        if (pos_ + n > data_.size())
+            data_.resize(pos_ + n);
+        std::memcpy(&data_[pos_], c, n);
+        pos_ += n;
+    }
+    uint64_t tellp() override { return pos_; }
+    void seekp(uint64_t pos) override { pos_ = pos; }
+    std::string take() { return std::move(data_); }
+
+private:
+    std::string data_;
+    std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+std::string encodeExr(const Image& image)
 {
     try {
         Imf::Header header(image.width, image.height);
@@ -25,11 +52,15 @@ void writeExr(const std::string& path, const Image& image)
         fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
         fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
         fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
-        Imf::OutputFile file(path.c_str(), header);
-        file.setFrameBuffer(fb);
-        file.writePixels(image.height);
+        MemoryStream stream;
+        {
+            Imf::OutputFile file(stream, header);
+            file.setFrameBuffer(fb);
+            file.writePixels(image.height);
+        }
+        return stream.take();
     } catch (const std::exception& e) {
-        throw Error(cat(path, ": cannot write EXR: ", e.what()));
+        throw Error(cat("cannot encode EXR: ", e.what()));
     }
 }
 

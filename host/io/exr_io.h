@@ -8,7 +8,8 @@
 
 namespace fen {
 
-void writeExr(const std::string& path, const Image& image);
+// The image as the bytes of an EXR file (written by io/output_files.h, atomically).
+std::string encodeExr(const Image& image);
 // Reads R, G, B (any pixel type; a luminance-only Y file gives grey). The data window's origin is
 // ignored: pixel (0,0) is its top-left corner.
 Image readExr(const std::string& path);

@@ -6,11 +6,6 @@
 #include <cstring>
 #include <filesystem>
 
-#include <ImfChannelList.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfIO.h>
-#include <ImfOutputFile.h>
 #include <fcntl.h>
 #include <stb/stb_image_write.h>
 #include <sys/stat.h>
@@ -23,27 +18,6 @@ namespace fen {
 namespace {
 
 namespace fs = std::filesystem;
-
-// An OpenEXR output stream into memory: the file is written (and checked) by us, not by the
-// library's destructor, which cannot report a failure.
-class MemoryStream : public Imf::OStream {
-public:
-    MemoryStream() : Imf::OStream("memory") {}
-    void write(const char c[], int n) override
-    {
-        if (pos_ + n > data_.size())
-            data_.resize(pos_ + n);
-        std::memcpy(&data_[pos_], c, n);
-        pos_ += n;
-    }
-    uint64_t tellp() override { return pos_; }
-    void seekp(uint64_t pos) override { pos_ = pos; }
-    std::string take() { return std::move(data_); }
-
-private:
-    std::string data_;
-    std::size_t pos_ = 0;
-};
 
 std::string errnoText(int e) { return std::strerror(e); }
 
@@ -129,30 +103,6 @@ void checkOutputPath(const std::string& path, const std::string& what)
     const int fd = createTemporary(path, &tmp);
     ::close(fd);
     ::unlink(tmp.c_str());
-}
-
-std::string encodeExr(const Image& image)
-{
-    try {
-        Imf::Header header(image.width, image.height);
-        for (const char* c : {"R", "G", "B"})
-            header.channels().insert(c, Imf::Channel(Imf::FLOAT));
-        Imf::FrameBuffer fb;
-        const std::size_t xs = 3 * sizeof(float), ys = xs * static_cast<std::size_t>(image.width);
-        char* base = reinterpret_cast<char*>(const_cast<float*>(image.rgb.data()));
-        fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
-        fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
-        fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
-        MemoryStream stream;
-        {
-            Imf::OutputFile file(stream, header);
-            file.setFrameBuffer(fb);
-            file.writePixels(image.height);
-        }
-        return stream.take();
-    } catch (const std::exception& e) {
-        throw Error(cat("cannot encode EXR: ", e.what()));
-    }
 }
 
 std::string encodePng(int width, int height, int channels, const std::vector<unsigned char>& pixels)

@@ -34,8 +34,7 @@ private:
 // there (an exclusive temporary, removed at once); else fen::Error naming `what` and the path.
 void checkOutputPath(const std::string& path, const std::string& what);
 
-// Encodings, in memory.
-std::string encodeExr(const Image& image);
+// A PNG, in memory (the EXR encoder is io/exr_io.h's encodeExr).
 std::string encodePng(int width, int height, int channels, const std::vector<unsigned char>& pixels);
 
 }  // namespace fen

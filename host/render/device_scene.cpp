@@ -1,22 +1,9 @@
 // device_scene.cpp — uploading a Scene (device_scene.h).
 #include "render/device_scene.h"
 
-#include <cstring>
-
 #include "shared/fen_render.h"
 
 namespace fen {
-
-namespace {
-
-float asFloat(std::uint32_t u)
-{
-    float f;
-    std::memcpy(&f, &u, sizeof f);
-    return f;
-}
-
-}  // namespace
 
 DeviceScene::DeviceScene(ocl::Context& ctx, const Scene& scene, int bvhWidth)
 {
@@ -29,7 +16,7 @@ DeviceScene::DeviceScene(ocl::Context& ctx, const Scene& scene, int bvhWidth)
     for (const Material& m : scene.materials) {
         dev::DevMaterial d{};
         d.albedo = {m.albedo.r, m.albedo.g, m.albedo.b,
-                    asFloat(m.glass ? FEN_MATERIAL_GLASS : FEN_MATERIAL_DIFFUSE)};
+                    dev::fen_as_float(m.glass ? FEN_MATERIAL_GLASS : FEN_MATERIAL_DIFFUSE)};
         d.transmission = {m.transmission.r, m.transmission.g, m.transmission.b, m.ior};
         mats.push_back(d);
     }

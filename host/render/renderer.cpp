@@ -152,7 +152,10 @@ struct Renderer::Impl {
             wavefront->run(base + done, n, counts, onIteration);
             done += n;
             strategy->afterPaths(n, done == count);
-            estimateImage(stats, done);
+            // A counted batch's end is estimated from the counted batches, batch included, by
+            // the render loop: not twice.
+            if (done < count || !stats)
+                estimateImage(stats, done);
         }
         const std::uint64_t shadowBefore = counts.shadowRays;
         wavefront->endBatch(batch, counts);

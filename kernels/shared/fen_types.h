@@ -38,6 +38,7 @@ typedef float4 fen_float4;
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #define FEN_NS_BEGIN namespace fen { namespace dev {
 #define FEN_NS_END } }
@@ -53,6 +54,14 @@ struct alignas(16) fen_float4 {
     float x, y, z, w;
 };
 static_assert(sizeof(fen_float4) == 16, "fen_float4 must be 16 bytes");
+/* The host twin of OpenCL's as_float: an id stored in a float lane that the device reads back
+   with as_uint. */
+inline fen_f32 fen_as_float(fen_u32 u)
+{
+    fen_f32 f;
+    std::memcpy(&f, &u, sizeof f);
+    return f;
+}
 FEN_NS_END
 
 #define FEN_ASSERT_SIZE(T, n) static_assert(sizeof(T) == (n), #T " has the wrong size")

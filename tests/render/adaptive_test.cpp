@@ -139,27 +139,16 @@ TEST(AdaptiveRareLight, ASmallOpeningIsFoundAndItsFloorConverges)
     const int black = b.material("black", glm::vec3(0.0f));
     const float S = 1.0f, Hc = 0.6f, o0 = 0.4f, o1 = 0.6f;
     b.add("floor", rect({0, 0, 0}, {S, 0, 0}, {0, 0, S}), b.material("floor", glm::vec3(0.8f)));
-    std::vector<Triangle> w;
-    for (const auto& r : {rect({0, 0, 0}, {S, 0, 0}, {0, Hc, 0}), rect({0, 0, S}, {S, 0, 0}, {0, Hc, 0}),
-                          rect({0, 0, 0}, {0, 0, S}, {0, Hc, 0}), rect({S, 0, 0}, {0, 0, S}, {0, Hc, 0}),
-                          rect({0, Hc, 0}, {S, 0, 0}, {0, 0, o0}), rect({0, Hc, o1}, {S, 0, 0}, {0, 0, S - o1}),
-                          rect({0, Hc, o0}, {o0, 0, 0}, {0, 0, o1 - o0}),
-                          rect({o1, Hc, o0}, {S - o1, 0, 0}, {0, 0, o1 - o0}),
-                          rect({-10, -0.01f, -10}, {20, 0, 0}, {0, 0, 20})})
-        w.insert(w.end(), r.begin(), r.end());
+    std::vector<Triangle> w = test::boxWithCeilingOpening(S, Hc, o0, o1);
+    const auto ground = rect({-10, -0.01f, -10}, {20, 0, 0}, {0, 0, 20});
+    w.insert(w.end(), ground.begin(), ground.end());
     b.add("box and ground", w, black);
     b.uniformSky(1000.0);
     b.camera({0.5, 0.55, 0.5}, {0.5, 0.0, 0.5}, {0, 0, -1}, 60.0);
     const Scene scene = b.build();
     const int W = 32, H = 24;
     const Roi roi{10, 8, 22, 16};
-    double expected = 0.0;
-    for (int y = roi.y0; y < roi.y1; ++y)
-        for (int x = roi.x0; x < roi.x1; ++x) {
-            const glm::dvec3 p = test::pixelOnPlaneY(scene.cameras[0], W, H, x + 0.5, y + 0.5, 0.0);
-            expected += 0.8 * 1000.0 * test::viewFactorToCeilingRect(p, o0, o1, o0, o1, Hc);
-        }
-    expected /= static_cast<double>(roi.pixels());
+    const double expected = test::floorUnderOpeningMean(scene.cameras[0], W, H, roi, 0.8, 1000.0, Hc, o0, o1);
     const Measured a = measure(*ctx, scene, adaptive(EmissionMethod::Uniform), 6u << 20, W, H, roi);
     std::printf("[ adaptive ] small opening: measured %.5g +- %.3g, expected %.5g: %+.2f sigma\n", a.mean,
                 a.se, expected, (a.mean - expected) / a.se);

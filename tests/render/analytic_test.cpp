@@ -156,17 +156,7 @@ TEST(Analytic, FloorUnderAnOpeningInABlackRoom)
     const int black = b.material("black", glm::vec3(0.0f));
     const float S = 2.0f, Hc = 1.2f, o0 = 0.5f, o1 = 1.5f;
     b.add("floor", rect({0, 0, 0}, {S, 0, 0}, {0, 0, S}), b.material("floor", glm::vec3(0.8f)));
-    b.add("walls", [&] {
-        std::vector<Triangle> w;
-        for (const auto& r : {rect({0, 0, 0}, {S, 0, 0}, {0, Hc, 0}), rect({0, 0, S}, {S, 0, 0}, {0, Hc, 0}),
-                              rect({0, 0, 0}, {0, 0, S}, {0, Hc, 0}), rect({S, 0, 0}, {0, 0, S}, {0, Hc, 0}),
-                              // ceiling around the opening
-                              rect({0, Hc, 0}, {S, 0, 0}, {0, 0, o0}), rect({0, Hc, o1}, {S, 0, 0}, {0, 0, S - o1}),
-                              rect({0, Hc, o0}, {o0, 0, 0}, {0, 0, o1 - o0}),
-                              rect({o1, Hc, o0}, {S - o1, 0, 0}, {0, 0, o1 - o0})})
-            w.insert(w.end(), r.begin(), r.end());
-        return w;
-    }(), black);
+    b.add("walls", test::boxWithCeilingOpening(S, Hc, o0, o1), black);
     b.uniformSky(1000.0);
     b.camera({1.0, 1.0, 1.0}, {1.0, 0.0, 1.0}, {0, 0, -1}, 40.0);
     const int W = 48, H = 36;
@@ -174,13 +164,7 @@ TEST(Analytic, FloorUnderAnOpeningInABlackRoom)
     const Scene scene = b.build();
     const auto t = test::renderScene(*ctx, scene, W, H, 24u << 20, {roi});
     expectClean(t.result);
-    double expected = 0.0;
-    for (int y = roi.y0; y < roi.y1; ++y)
-        for (int x = roi.x0; x < roi.x1; ++x) {
-            const glm::dvec3 p = test::pixelOnPlaneY(scene.cameras[0], W, H, x + 0.5, y + 0.5, 0.0);
-            expected += 0.8 * 1000.0 * test::viewFactorToCeilingRect(p, o0, o1, o0, o1, Hc);
-        }
-    expected /= static_cast<double>(roi.pixels());
+    const double expected = test::floorUnderOpeningMean(scene.cameras[0], W, H, roi, 0.8, 1000.0, Hc, o0, o1);
     expectMean(t.result, 0, expected, 0.01, "floor under opening");
 }
 

@@ -139,6 +139,31 @@ double cornerFactor(double a, double b, double c)
 
 }  // namespace
 
+std::vector<Triangle> boxWithCeilingOpening(float S, float h, float o0, float o1)
+{
+    std::vector<Triangle> w;
+    for (const auto& r : {rect({0, 0, 0}, {S, 0, 0}, {0, h, 0}), rect({0, 0, S}, {S, 0, 0}, {0, h, 0}),
+                          rect({0, 0, 0}, {0, 0, S}, {0, h, 0}), rect({S, 0, 0}, {0, 0, S}, {0, h, 0}),
+                          // the ceiling around the opening
+                          rect({0, h, 0}, {S, 0, 0}, {0, 0, o0}), rect({0, h, o1}, {S, 0, 0}, {0, 0, S - o1}),
+                          rect({0, h, o0}, {o0, 0, 0}, {0, 0, o1 - o0}),
+                          rect({o1, h, o0}, {S - o1, 0, 0}, {0, 0, o1 - o0})})
+        w.insert(w.end(), r.begin(), r.end());
+    return w;
+}
+
+double floorUnderOpeningMean(const CameraSpec& cam, int width, int height, const Roi& roi, double rho,
+                             double skyL, float h, float o0, float o1)
+{
+    double sum = 0.0;
+    for (int y = roi.y0; y < roi.y1; ++y)
+        for (int x = roi.x0; x < roi.x1; ++x) {
+            const glm::dvec3 p = pixelOnPlaneY(cam, width, height, x + 0.5, y + 0.5, 0.0);
+            sum += rho * skyL * viewFactorToCeilingRect(p, o0, o1, o0, o1, h);
+        }
+    return sum / static_cast<double>(roi.pixels());
+}
+
 double viewFactorToCeilingRect(glm::dvec3 p, double x0, double x1, double z0, double z1, double y)
 {
     const double c = y - p.y;

@@ -54,4 +54,13 @@ double viewFactorToCeilingRect(glm::dvec3 p, double x0, double x1, double z0, do
 glm::dvec3 pixelOnPlaneY(const CameraSpec& cam, int width, int height, double px, double py,
                          double planeY);
 
+// The walls and ceiling of an S x S box of height h (x, z in [0, S]) whose ceiling has a square
+// opening [o0, o1]^2: the shell of the analytic "floor under an opening" scenes.
+std::vector<Triangle> boxWithCeilingOpening(float S, float h, float o0, float o1);
+
+// The mean over `roi` of the floor's exact luminance rho L F under that opening, lit by a uniform
+// sky of luminance L, F each pixel's configuration factor to the opening.
+double floorUnderOpeningMean(const CameraSpec& cam, int width, int height, const Roi& roi, double rho,
+                             double skyL, float h, float o0, float o1);
+
 } }  // namespace fen::test
