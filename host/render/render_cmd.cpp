@@ -134,9 +134,9 @@ EmissionSettings emissionSettings(const RenderOptions& opt)
         a.weighBatches = false;
     else if (!opt.adaptiveWeights.empty() && opt.adaptiveWeights != "predicted")
         throw Error(cat("--adaptive-weights '", opt.adaptiveWeights, "': expected predicted or equal"));
-    if (opt.adaptiveTarget == "absolute")
-        a.relativeTarget = false;
-    else if (!opt.adaptiveTarget.empty() && opt.adaptiveTarget != "relative")
+    if (opt.adaptiveTarget == "relative" || opt.adaptiveTarget == "absolute")
+        a.relativeTarget = opt.adaptiveTarget == "relative";
+    else if (!opt.adaptiveTarget.empty())
         throw Error(cat("--adaptive-target '", printable(opt.adaptiveTarget, 40), "': expected relative or absolute"));
     if (adaptive)
         validateAdaptiveOptions(a);

@@ -371,7 +371,23 @@ TEST(CliRender, AdaptiveReportsItsGrid)
         if (std::string(base) == "portal") {
             EXPECT_EQ(e["portal_nodes"], nlohmann::json({"window", "door_frame"}));
         }
+        EXPECT_EQ(e["target"], "absolute");
     }
+    // The relative target is what it says, and as deterministic as the absolute one: the same
+    // image whatever the pool size, though its statistics follow the image estimate pass by pass.
+    std::string bytes[2];
+    for (int k = 0; k < 2; ++k) {
+        const std::string out = dir + "/relative_" + std::to_string(k) + ".exr";
+        const CliRun r = run("render " + std::string(FEN_SCENES_DIR) + "/room.gltf --out " + out +
+                             " --adaptive-target relative --paths 1048576 --width 64 --no-progress --pool " +
+                             (k == 0 ? "65536" : "8192"));
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/relative_" + std::to_string(k) + ".json"))["emission"]["target"],
+                  "relative");
+        bytes[k] = slurp(out);
+    }
+    EXPECT_FALSE(bytes[0].empty());
+    EXPECT_EQ(bytes[0], bytes[1]);
 }
 
 TEST(CliRender, PortalsWarnAboutTheLightTheyMiss)
