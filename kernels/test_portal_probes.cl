@@ -4,19 +4,23 @@
 #include "lib/bvh_traverse.h"
 #include "lib/emit_portal.h"
 
-/* out[i] = portal triangle chosen for direction dir (eq. 1), from the i-th random numbers. */
-kernel void portal_pick_probe(global const float4* groups, global const uint* range,
-                              global const ulong* triangle_cdf, uint group_count, float4 dir,
-                              global uint* out, uint n, uint seed)
+/* out[i] = portal triangle chosen for direction dir in direction bin `bin` (eq. 1 averaged over the
+   bin), from the i-th random numbers; FEN_INVALID_ID when the group drawn is edge-on to dir. */
+kernel void portal_pick_probe(global const float4* groups, global const uint* group_alias,
+                              global const float* group_ratio, global const uint* range,
+                              global const ulong* triangle_cdf, uint group_count,
+                              uint group_alias_shift, uint bin, float4 dir, global uint* out,
+                              uint n, uint seed)
 {
     const uint i = get_global_id(0);
     if (i >= n)
         return;
     /* choosing a triangle reads neither the vertices nor the BVH */
-    const Portals p = portals_from(groups, range, triangle_cdf, 0, 0, 0, group_count);
+    const Portals p = portals_from(groups, group_alias, group_ratio, range, triangle_cdf, 0, 0, 0,
+                                   group_count, group_alias_shift);
     const RngBlock bits = rng_bits(seed, 0x13579bdu, i, 0, 0, 0);
     float scale;
-    out[i] = portal_pick_triangle(&p, dir.xyz, bits.y, bits.x, &scale);
+    out[i] = portal_pick_triangle(&p, bin, dir.xyz, bits.y, bits.x, &scale);
 }
 
 /* out[i] = the weight (rgb, before the camera) and alive flag of path i emitted by the portal

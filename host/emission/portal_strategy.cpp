@@ -34,18 +34,24 @@ public:
         if (!(complement_ >= 0.0 && complement_ <= 0.5))
             throw Error(cat("--portal-complement ", complement_, " must be in 0..0.5"));
         ocl::Context& c = in.ctx;
-        // Sky paths: factor_k sin(theta) times 1 -- the portals' projected area W(v) comes in per
-        // path (lib/emit_portal.h).
+        // Sky paths: factor_k sin(theta) times 1 -- the portal part A_g |v.n_g| / P(g | bin) comes
+        // in per path (lib/emit_portal.h).
         const dev::SourceParams sp = sourceParams(pe_.sources, pe_.sunWeight, 1.0);
         sourceParams_ = c.buffer(CL_MEM_READ_ONLY, sizeof sp, "portal emission parameters", &sp);
         dev::PortalParams pp{};
         pp.groups = static_cast<std::uint32_t>(pe_.groups.size());
         pp.overlap = static_cast<std::uint32_t>(settings.overlap);
         pp.complement = static_cast<float>(complement_);
+        pp.group_alias_shift = pe_.groupAliasShift;
         portalParams_ = c.buffer(CL_MEM_READ_ONLY, sizeof pp, "portal parameters", &pp);
         alias_ = c.buffer(CL_MEM_READ_ONLY, pe_.sources.alias.size() * 4, "source table", pe_.sources.alias.data());
         factor_ = c.buffer(CL_MEM_READ_ONLY, pe_.skyFactor.size() * 4, "sky weights", pe_.skyFactor.data());
         groups_ = c.buffer(CL_MEM_READ_ONLY, pe_.groups.size() * 16, "portal groups", pe_.groups.data());
+        groupAlias_ = c.buffer(CL_MEM_READ_ONLY, pe_.groupAlias.size() * 4, "portal group tables",
+                               pe_.groupAlias.data());
+        groupRatio_ = c.buffer(CL_MEM_READ_ONLY, pe_.groupRatio.size() * 4, "portal group weights",
+                               pe_.groupRatio.data());
+        cellBin_ = c.buffer(CL_MEM_READ_ONLY, pe_.cellBin.size() * 4, "portal direction bins", pe_.cellBin.data());
         range_ = c.buffer(CL_MEM_READ_ONLY, pe_.groupRange.size() * 4, "portal groups", pe_.groupRange.data());
         cdf_ = c.buffer(CL_MEM_READ_ONLY, pe_.triangleCdf.size() * 8, "portal triangle table",
                         pe_.triangleCdf.data());
@@ -67,7 +73,8 @@ public:
     void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
     {
         ocl::setKernelArgsFrom(emit, first, sourceParams_, alias_, sky_.theta, sky_.phi, sky_.values,
-                               factor_, portalParams_, groups_, range_, cdf_, vertices_, bvh_->nodes(),
+                               factor_, portalParams_, groups_, groupAlias_, groupRatio_, cellBin_, range_,
+                               cdf_, vertices_, bvh_->nodes(),
                                bvh_->packets(), uniformParams_, uniformAlias_, uniformFactor_);
     }
     bool learns() const override { return complement_ > 0.0; }
@@ -101,6 +108,7 @@ public:
         return {{"portal_nodes", pe_.portals.nodes},
                 {"portal_triangles", pe_.portals.triangles.size()},
                 {"portal_plane_groups", pe_.portals.groups.size()},
+                {"portal_direction_bins", pe_.groupRatio.size() / pe_.portals.groups.size()},
                 {"portal_overlap", overlapName(overlap_)},
                 {"sun_flux_lm", pe_.sunFlux_lm},
                 {"sky_flux_lm", pe_.skyFlux_lm},
@@ -132,7 +140,8 @@ private:
     PortalEmission pe_;
     UniformSources uniform_;
     std::vector<double> unreached_;  // per batch (calibration batches too: each is an estimate)
-    cl::Buffer sourceParams_, portalParams_, alias_, factor_, groups_, range_, cdf_, vertices_, stats_,
+    cl::Buffer sourceParams_, portalParams_, alias_, factor_, groups_, groupAlias_, groupRatio_, cellBin_,
+        range_, cdf_, vertices_, stats_,
         uniformParams_, uniformAlias_, uniformFactor_;
     std::unique_ptr<DeviceBvh> bvh_;
 };

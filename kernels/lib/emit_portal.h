@@ -3,15 +3,16 @@
  *
  * Per path: the joint table picks the sun or a sky cell (exact probabilities); v is the sun's
  * direction (or in its cone) or sampled in the cell proportionally to g; a portal group is chosen
- * by A_g |v.n_g| among W(v) = sum_g A_g |v.n_g| (eq. 1 at group level, exact integer shares), a
- * triangle of it by area,
- * x uniformly on the triangle; the origin is moved back along -v outside the scene's bounding
- * sphere. N(x, v) = portal triangles on the ray's line (counted in the portals' own BVH from that
- * origin, so every crossing has t > 0; not counted for --portal-overlap none).
- * Weight: sun E W / P(sun), sky W factor_k sin(theta) (W as the exact w_g / P(g) of the group
- * drawn); then
- * divided by N (--portal-overlap weight) or kept with probability 1/N (reject: the path index is
- * spent all the same, so rejected candidates count as emitted paths).
+ * from the group table of v's direction bin (the sun's, or the block of sky cells holding v's
+ * cell: eq. 1 averaged over the bin, exact integer shares, one read whatever the number of
+ * planes), a triangle of it by area, x uniformly on the triangle; the origin is moved back along
+ * -v outside the scene's bounding sphere. N(x, v) = portal triangles on the ray's line (counted in
+ * the portals' own BVH from that origin, so every crossing has t > 0; not counted for
+ * --portal-overlap none).
+ * Weight: sun E s / P(sun), sky s factor_k sin(theta), s = A_g |v.n_g| / P(g | bin) for the
+ * group drawn; then divided by N (--portal-overlap weight) or kept with probability 1/N (reject:
+ * the path index is spent all the same, so rejected candidates count as emitted paths) -- both
+ * unbiased with the drawn crossing's own density (host/emission/portal_emission.h).
  * The complement (PortalParams.complement = c > 0, DESIGN.md §3.4): a share c of the paths are
  * `uniform` paths whose line crosses no portal (lines that do are rejected: the portals' own) --
  * the light the portals cannot reach, reflected from outside or through unmarked openings. Their
@@ -27,17 +28,21 @@
 
 typedef struct {
     const global float4* groups;      /* xyz unit normal, w area (m^2) */
+    const global uint* group_alias;   /* per direction bin: an alias table over the groups */
+    const global float* group_ratio;  /* per bin and group: A_g / P(g | bin) */
     const global uint* range;         /* per group: first triangle, count */
     const global ulong* triangle_cdf; /* group g: entries [first + g, first + g + count] */
     const global float4* vertices;    /* 3 per triangle */
     const global BvhNode* nodes;      /* the portal triangles' own BVH */
     const global TriPacket4* packets;
     uint group_count;
+    uint group_alias_shift;
 } Portals;
 
 typedef struct {
     SourceTable sources;
     Sky sky;
+    const global uint* cell_bin;  /* per sky cell: its direction bin (bin 0: the sun) */
     Portals portals;
     const global PortalParams* portal_params;
     SourceTable uniform_sources;  /* the complement's: `uniform`'s table and sky weights */
@@ -50,24 +55,31 @@ typedef struct {
     global const SourceParams *source_params, global const uint *source_alias,                   \
         global const float *sky_theta, global const float *sky_phi, global const float *sky_values, \
         global const float *sky_factor, global const PortalParams *portal_params,                \
-        global const float4 *portal_groups, global const uint *portal_range,                     \
+        global const float4 *portal_groups, global const uint *portal_group_alias,              \
+        global const float *portal_group_ratio, global const uint *portal_cell_bin,              \
+        global const uint *portal_range,                                                         \
         global const ulong *portal_cdf, global const float4 *portal_vertices,                    \
         global const BvhNode *portal_nodes, global const TriPacket4 *portal_packets,              \
         global const SourceParams *uniform_params, global const uint *uniform_alias,             \
         global const float *uniform_factor
 #define FEN_PORTAL_EMITTER                                                                       \
     portal_emitter(params, source_params, source_alias, sky_theta, sky_phi, sky_values,          \
-                   sky_factor, portal_params, portal_groups, portal_range, portal_cdf,           \
+                   sky_factor, portal_params, portal_groups, portal_group_alias,                 \
+                   portal_group_ratio, portal_cell_bin, portal_range, portal_cdf,                \
                    portal_vertices, portal_nodes, portal_packets, uniform_params, uniform_alias, \
                    uniform_factor)
 
-static inline Portals portals_from(const global float4* groups, const global uint* range,
+static inline Portals portals_from(const global float4* groups, const global uint* group_alias,
+                                   const global float* group_ratio, const global uint* range,
                                    const global ulong* triangle_cdf, const global float4* vertices,
                                    const global BvhNode* nodes, const global TriPacket4* packets,
-                                   uint group_count)
+                                   uint group_count, uint group_alias_shift)
 {
     Portals p;
     p.groups = groups;
+    p.group_alias = group_alias;
+    p.group_ratio = group_ratio;
+    p.group_alias_shift = group_alias_shift;
     p.range = range;
     p.triangle_cdf = triangle_cdf;
     p.vertices = vertices;
@@ -82,7 +94,8 @@ static inline PortalEmitter portal_emitter(
     const global uint* source_alias, const global float* sky_theta, const global float* sky_phi,
     const global float* sky_values, const global float* sky_factor,
     const global PortalParams* portal_params, const global float4* portal_groups,
-    const global uint* portal_range, const global ulong* portal_cdf,
+    const global uint* portal_group_alias, const global float* portal_group_ratio,
+    const global uint* portal_cell_bin, const global uint* portal_range, const global ulong* portal_cdf,
     const global float4* portal_vertices, const global BvhNode* portal_nodes,
     const global TriPacket4* portal_packets, const global SourceParams* uniform_params,
     const global uint* uniform_alias, const global float* uniform_factor)
@@ -92,8 +105,10 @@ static inline PortalEmitter portal_emitter(
     e.sources.alias = source_alias;
     e.sky = sky_from(sky_theta, sky_phi, sky_values, sky_factor, params->sky_theta_nodes,
                      params->sky_phi_nodes);
-    e.portals = portals_from(portal_groups, portal_range, portal_cdf, portal_vertices, portal_nodes,
-                             portal_packets, portal_params->groups);
+    e.cell_bin = portal_cell_bin;
+    e.portals = portals_from(portal_groups, portal_group_alias, portal_group_ratio, portal_range,
+                             portal_cdf, portal_vertices, portal_nodes, portal_packets,
+                             portal_params->groups, portal_params->group_alias_shift);
     e.portal_params = portal_params;
     e.uniform_sources.params = uniform_params;
     e.uniform_sources.alias = uniform_alias;
@@ -127,45 +142,19 @@ static inline uint cdf_search_binary(const global ulong* cdf, uint n, uint r)
     return lo;
 }
 
-/* eq. (1): a portal triangle for direction `dir`. The group is chosen with 32 random bits
-   against integer bounds: group g owns [b_{g-1}, b_g) of [0, 2^32), b_g = 2^32 (w_0 + .. + w_g) / W
-   for w_g = A_g |dir.n_g|, W = sum_g w_g, kept increasing so every group facing dir owns at least
-   one value. Its probability P(g) = (b_g - b_{g-1}) / 2^32 is exact -- a float threshold would be
-   off by up to 2^-24 absolutely, 0.1 % for a group of probability 5e-5. Then a triangle of the
-   group by area, exact likewise. *scale = w_g / P(g), what the weight carries in place of W (the
-   two differ by the bounds' rounding, ~1e-7 relative: the overlap correction below treats every
-   crossing of the line as generated with the same density). FEN_INVALID_ID when nothing faces dir. */
-static inline uint portal_pick_triangle(const Portals* portals, float3 dir, uint r_group, uint r_tri,
-                                        float* scale)
+/* eq. (1), averaged over direction bin `bin`: a portal triangle for direction `dir` -- a group from
+   the bin's alias table (exact integer probabilities P(g | bin), > 0 for every group), then a
+   triangle of it by area, exact likewise. *scale = A_g |dir.n_g| / P(g | bin), what the weight
+   carries for the portals (host/emission/portal_emission.h). FEN_INVALID_ID when the group drawn
+   is edge-on to dir (it carries no light along dir). */
+static inline uint portal_pick_triangle(const Portals* portals, uint bin, float3 dir, uint r_group,
+                                        uint r_tri, float* scale)
 {
-    float W = 0.0f;
-    uint facing = 0;
-    for (uint g = 0; g < portals->group_count; ++g) {
-        const float w = portals->groups[g].w * fabs(dot(dir, portals->groups[g].xyz));
-        W += w;
-        facing += w > 0.0f;
-    }
-    if (facing == 0)
+    const uint columns = 1u << (32u - portals->group_alias_shift);
+    const uint g = alias_pick(portals->group_alias + 2u * bin * columns, portals->group_alias_shift, r_group);
+    *scale = fabs(dot(dir, portals->groups[g].xyz)) * portals->group_ratio[bin * portals->group_count + g];
+    if (!(*scale > 0.0f))
         return FEN_INVALID_ID;
-    const ulong all = 4294967296ul;
-    ulong prev = 0;
-    float cum = 0.0f;
-    uint g = 0, seen = 0;
-    float w = 0.0f;
-    ulong bound = 0;
-    for (; g < portals->group_count; ++g) {
-        w = portals->groups[g].w * fabs(dot(dir, portals->groups[g].xyz));
-        cum += w;
-        if (!(w > 0.0f))
-            continue;
-        ++seen;
-        bound = seen == facing ? all : convert_ulong_rtz(cum / W * 4294967296.0f);
-        bound = clamp(bound, prev + 1ul, all - (ulong)(facing - seen));
-        if ((ulong)r_group < bound)
-            break;
-        prev = bound;
-    }
-    *scale = w / ((float)(bound - prev) * 0x1p-32f);
     const uint first = portals->range[2 * g], count = portals->range[2 * g + 1];
     return first + cdf_search_binary(portals->triangle_cdf + first + g, count, r_tri);
 }
@@ -208,7 +197,8 @@ static inline int emit_portal(const global RenderParams* params, const PortalEmi
     const float3 dir = source_direction(params, &e->sky, e->sources.params, entry,
                                         fen_u32_to_unit(bits.z), fen_u32_to_unit(bits.w), &beta);
     float scale;
-    const uint t = portal_pick_triangle(&e->portals, dir, bits.y, bits2.x, &scale);
+    const uint bin = entry == 0 ? 0u : e->cell_bin[entry - 1];
+    const uint t = portal_pick_triangle(&e->portals, bin, dir, bits.y, bits2.x, &scale);
     if (t == FEN_INVALID_ID)
         return 0;
     const float3 origin = origin_outside(params, portal_point(&e->portals, t, u2.x, u2.y), dir);

@@ -59,7 +59,7 @@ typedef struct {
     fen_u32 groups;      /* portal plane groups */
     fen_u32 overlap;     /* FEN_OVERLAP_* */
     fen_f32 complement;  /* share of paths that estimate the light no portal passes (0: none) */
-    fen_u32 pad0;
+    fen_u32 group_alias_shift; /* each direction bin's group table has 2^(32 - shift) columns */
 } PortalParams;
 FEN_ASSERT_SIZE(PortalParams, 16);
 

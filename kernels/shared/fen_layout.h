@@ -42,6 +42,7 @@
     X(SourceParams, alias_shift) \
     X(PortalParams, overlap) \
     X(PortalParams, complement) \
+    X(PortalParams, group_alias_shift) \
     X(AdaptiveCell, box)     \
     X(AdaptiveCell, dirs)    \
     X(AdaptiveCell, weight)  \

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 
 #include "cl/launch.h"
 #include "emission/portal_emission.h"
@@ -40,42 +41,94 @@ Scene portalScene(double sunAltitude = 35.0)
     return b.build();
 }
 
-TEST(PortalSampling, TriangleChoiceFollowsEquation1)
+// Triangle t's share of eq. (1) over a set of directions: sum over them of weight * S_t |v . n_t|,
+// from each triangle's own geometry (not the implementation's groups).
+std::vector<double> triangleWeights(const PortalSet& P, const std::vector<std::pair<glm::dvec3, double>>& dirs)
+{
+    std::vector<double> w(P.triangles.size(), 0.0);
+    for (std::size_t t = 0; t < P.triangles.size(); ++t) {
+        const Triangle& tr = P.triangles[t];
+        const glm::dvec3 c = glm::cross(glm::dvec3(tr.p1 - tr.p0), glm::dvec3(tr.p2 - tr.p0));
+        for (const auto& [v, weight] : dirs)
+            w[t] += weight * 0.5 * std::fabs(glm::dot(c, v));
+    }
+    return w;
+}
+
+// The device's triangle choice in direction bin `bin` for direction v, n draws.
+std::vector<double> drawTriangles(ocl::Context& ctx, const PortalEmission& pe, std::uint32_t bin,
+                                  const glm::dvec3& v, std::uint32_t n)
+{
+    cl::Kernel k(ctx.program("test_portal_probes.cl", {"FEN_BVH_WIDTH=8"}), "portal_pick_probe");
+    auto buf = [&](const auto& x, const char* what) {
+        return ctx.buffer(CL_MEM_READ_ONLY, x.size() * sizeof(x[0]), what, x.data());
+    };
+    const cl::Buffer gb = buf(pe.groups, "groups"), ab = buf(pe.groupAlias, "group alias"),
+                     qb = buf(pe.groupRatio, "group ratio"), rb = buf(pe.groupRange, "range"),
+                     cb = buf(pe.triangleCdf, "cdf");
+    cl::Buffer out = ctx.buffer(CL_MEM_WRITE_ONLY, n * 4, "picks");
+    const cl_float4 dir = {{float(v.x), float(v.y), float(v.z), 0.0f}};
+    ocl::setKernelArgs(k, gb, ab, qb, rb, cb, static_cast<std::uint32_t>(pe.groups.size()), pe.groupAliasShift,
+                       bin, dir, out, n, std::uint32_t{9});
+    ocl::launch(ctx, k, "portal_pick_probe", n);
+    std::vector<std::uint32_t> pick(n);
+    ctx.queue().enqueueReadBuffer(out, CL_TRUE, 0, n * 4, pick.data());
+    std::vector<double> obs(pe.portals.triangles.size(), 0.0);
+    for (auto t : pick) {
+        if (t >= obs.size()) {
+            ADD_FAILURE() << "pick " << t << " out of range";
+            break;
+        }
+        obs[t] += 1.0;
+    }
+    return obs;
+}
+
+TEST(PortalSampling, TriangleChoiceFollowsEquation1PerDirectionBin)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     const Scene scene = portalScene();
-    const PortalEmission pe = setupPortalEmission(scene, makeSkyTables(buildSky(scene.sky)),
-                                                  buildSky(scene.sky), "", 8);
+    const auto g = buildSky(scene.sky);
+    const SkyTables sky = makeSkyTables(g);
+    const PortalEmission pe = setupPortalEmission(scene, sky, g, "", 8);
     const auto& P = pe.portals;
     const std::uint32_t n = 400000;
-    for (const glm::dvec3& v : {scene.sun.travelDirection, glm::normalize(glm::dvec3(0.3, -0.4, 0.8))}) {
-        cl::Kernel k(ctx->program("test_portal_probes.cl", {"FEN_BVH_WIDTH=8"}), "portal_pick_probe");
-        cl::Buffer gb = ctx->buffer(CL_MEM_READ_ONLY, pe.groups.size() * 16, "groups", pe.groups.data());
-        cl::Buffer rb = ctx->buffer(CL_MEM_READ_ONLY, pe.groupRange.size() * 4, "range", pe.groupRange.data());
-        cl::Buffer cb = ctx->buffer(CL_MEM_READ_ONLY, pe.triangleCdf.size() * 8, "cdf", pe.triangleCdf.data());
-        cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 4, "picks");
-        const cl_float4 dir = {{float(v.x), float(v.y), float(v.z), 0.0f}};
-        ocl::setKernelArgs(k, gb, rb, cb, static_cast<std::uint32_t>(pe.groups.size()), dir, out, n,
-                           std::uint32_t{9});
-        ocl::launch(*ctx, k, "portal_pick_probe", n);
-        std::vector<std::uint32_t> pick(n);
-        ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, n * 4, pick.data());
-        std::vector<double> obs(P.triangles.size(), 0.0), exp(P.triangles.size(), 0.0);
-        for (auto t : pick) {
-            ASSERT_LT(t, P.triangles.size());
-            obs[t] += 1.0;
-        }
-        // eq. (1) from each triangle's own geometry: S_t |v . n_t| / sum_i S_i |v . n_i|
-        double sum = 0.0;
-        for (std::size_t t = 0; t < P.triangles.size(); ++t) {
-            const Triangle& tr = P.triangles[t];
-            const glm::dvec3 c = glm::cross(glm::dvec3(tr.p1 - tr.p0), glm::dvec3(tr.p2 - tr.p0));
-            exp[t] = 0.5 * std::fabs(glm::dot(c, v));
-            sum += exp[t];
-        }
+    // The sun's bin (a point sun): eq. (1) at its direction exactly.
+    {
+        const std::vector<double> obs = drawTriangles(*ctx, pe, 0, scene.sun.travelDirection, n);
+        std::vector<double> exp = triangleWeights(P, {{scene.sun.travelDirection, 1.0}});
+        const double sum = std::accumulate(exp.begin(), exp.end(), 0.0);
         for (auto& e : exp)
             e *= n / sum;
-        EXPECT_GT(test::chiSquarePValue(obs, exp), kMinP);
+        EXPECT_GT(test::chiSquarePValue(obs, exp), kMinP) << "the sun's bin";
+    }
+    // Two sky bins (high and low): eq. (1) integrated over the bin's cells against the sky's
+    // luminance, by a midpoint rule of its own.
+    const std::uint32_t R = sky.thetaNodes - 1, C = sky.phiNodes - 1;
+    for (const std::uint32_t cell : {C / 3, (R - 1) * C + 2 * C / 3}) {
+        const std::uint32_t bin = pe.cellBin.at(cell);
+        ASSERT_GE(bin, 1u);
+        std::vector<std::pair<glm::dvec3, double>> dirs;
+        const int m = 6;
+        for (std::uint32_t k = 0; k < sky.cells; ++k) {
+            if (pe.cellBin[k] != bin)
+                continue;
+            const std::uint32_t i = k / C, j = k % C;
+            const double t0 = g->theta()[i], t1 = g->theta()[i + 1], p0 = g->phi()[j], p1 = g->phi()[j + 1];
+            for (int a = 0; a < m; ++a)
+                for (int b = 0; b < m; ++b) {
+                    const double th = t0 + (t1 - t0) * (a + 0.5) / m, ph = p0 + (p1 - p0) * (b + 0.5) / m;
+                    dirs.push_back({skyDirection(th, ph), g->eval(th, ph) * std::sin(th) * (t1 - t0) * (p1 - p0)});
+                }
+        }
+        ASSERT_FALSE(dirs.empty());
+        // The direction handed over only decides the weight, not the choice.
+        const std::vector<double> obs = drawTriangles(*ctx, pe, bin, -dirs.front().first, n);
+        std::vector<double> exp = triangleWeights(P, dirs);
+        const double sum = std::accumulate(exp.begin(), exp.end(), 0.0);
+        for (auto& e : exp)
+            e *= n / sum;
+        EXPECT_GT(test::chiSquarePValue(obs, exp), kMinP) << "sky bin " << bin;
     }
 }
 
@@ -154,24 +207,11 @@ TEST(PortalSampling, SkyCellsFollowEquation2)
     EXPECT_GT(test::chiSquarePValue(obs, exp), kMinP);
 }
 
-TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
+// Luminances Y of the weights of n paths the portal strategy emits in `scene` (kernel
+// portal_emit_probe), every candidate kept (*kept: all were).
+std::vector<double> emittedLuminances(ocl::Context& ctx, const Scene& scene, const PortalEmission& pe,
+                                      const SkyTables& sky, std::uint32_t overlap, std::uint32_t n, bool* kept)
 {
-    FEN_CL_CONTEXT_OR_SKIP(ctx);
-    // One vertical pane (no overlaps, N = 1): E[Y(weight)] is the luminous flux through it,
-    // E S |v_sun . n| + S (E_sky(n) + E_sky(-n)) -- the sky's illuminance of both faces, from an
-    // independent quadrature of the goniogram.
-    test::SceneBuilder b;
-    const int m = b.material("m", glm::vec3(0.5f));
-    b.add("pane", rect({0, 1, 0}, {1.5f, 0, 0}, {0, 1.2f, 0}), m, PortalMark::Panes);
-    b.add("floor", rect({-3, 0, -3}, {6, 0, 0}, {0, 0, 6}), m);
-    const double E = 40000.0, alt = 30.0;
-    b.sun(alt, 160.0, E);
-    b.cieSky(8, 2500.0, alt, 160.0);
-    b.camera({0, 1, 2}, {0, 1, 0}, {0, 1, 0}, 60.0);
-    const Scene scene = b.build();
-    const auto g = buildSky(scene.sky);
-    const SkyTables sky = makeSkyTables(g);
-    const PortalEmission pe = setupPortalEmission(scene, sky, g, "", 8);
     dev::RenderParams p{};
     glm::dvec3 centre;
     double radius;
@@ -185,41 +225,94 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
     const dev::SourceParams sp = sourceParams(pe.sources, pe.sunWeight, 1.0);
     dev::PortalParams pp{};
     pp.groups = static_cast<std::uint32_t>(pe.groups.size());
-    pp.overlap = FEN_OVERLAP_WEIGHT;
-    DeviceBvh pbvh(*ctx, pe.bvh);
-    const std::uint32_t n = 1u << 20;
+    pp.overlap = overlap;
+    pp.group_alias_shift = pe.groupAliasShift;
+    DeviceBvh pbvh(ctx, pe.bvh);
     auto buf = [&](const auto& v, const char* what) {
-        return ctx->buffer(CL_MEM_READ_ONLY, v.size() * sizeof(v[0]), what, v.data());
+        return ctx.buffer(CL_MEM_READ_ONLY, v.size() * sizeof(v[0]), what, v.data());
     };
-    cl::Buffer params = ctx->buffer(CL_MEM_READ_ONLY, sizeof p, "params", &p);
-    cl::Buffer sourceParams = ctx->buffer(CL_MEM_READ_ONLY, sizeof sp, "source params", &sp);
-    cl::Buffer portalParams = ctx->buffer(CL_MEM_READ_ONLY, sizeof pp, "portal params", &pp);
-    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "weights");
-    cl::Kernel k(ctx->program("test_portal_probes.cl", {"FEN_BVH_WIDTH=8"}), "portal_emit_probe");
+    cl::Buffer params = ctx.buffer(CL_MEM_READ_ONLY, sizeof p, "params", &p);
+    cl::Buffer sourceParams = ctx.buffer(CL_MEM_READ_ONLY, sizeof sp, "source params", &sp);
+    cl::Buffer portalParams = ctx.buffer(CL_MEM_READ_ONLY, sizeof pp, "portal params", &pp);
+    cl::Buffer out = ctx.buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "weights");
+    cl::Kernel k(ctx.program("test_portal_probes.cl", {"FEN_BVH_WIDTH=8"}), "portal_emit_probe");
     // Named: clSetKernelArg does not keep a buffer alive.
     const cl::Buffer theta = buf(sky.theta, "theta"), phi = buf(sky.phi, "phi"),
                      values = buf(sky.values, "values"), factor = buf(pe.skyFactor, "factor"),
                      alias = buf(pe.sources.alias, "alias"),
-                     groups = buf(pe.groups, "groups"), range = buf(pe.groupRange, "range"),
+                     groups = buf(pe.groups, "groups"), galias = buf(pe.groupAlias, "group alias"),
+                     gratio = buf(pe.groupRatio, "group ratio"), cbin = buf(pe.cellBin, "cell bins"),
+                     range = buf(pe.groupRange, "range"),
                      tcdf = buf(pe.triangleCdf, "tcdf"), verts = buf(pe.vertices, "verts");
     // The complement (PortalParams.complement) is 0: its `uniform` tables are bound but never read.
     ocl::setKernelArgs(k, params, sourceParams, alias, theta, phi, values, factor, portalParams, groups,
-                       range, tcdf, verts, pbvh.nodes(), pbvh.packets(), sourceParams, alias, factor, out, n);
-    ocl::launch(*ctx, k, "portal_emit_probe", n);
+                       galias, gratio, cbin, range, tcdf, verts, pbvh.nodes(), pbvh.packets(), sourceParams,
+                       alias, factor, out, n);
+    ocl::launch(ctx, k, "portal_emit_probe", n);
     std::vector<cl_float4> w(n);
-    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, w.size() * 16, w.data());
+    ctx.queue().enqueueReadBuffer(out, CL_TRUE, 0, w.size() * 16, w.data());
     std::vector<double> y;
+    *kept = true;
     for (const auto& x : w) {
-        ASSERT_EQ(x.s[3], 1.0f) << "a single pane: every candidate is kept";
+        *kept = *kept && x.s[3] == 1.0f;
         y.push_back(0.2126 * x.s[0] + 0.7152 * x.s[1] + 0.0722 * x.s[2]);
     }
-    const auto ms = test::meanAndStdErr(y);
-    const glm::dvec3 normal(0, 0, 1);
-    const double S = 1.5 * 1.2;
-    const double flux = E * S * std::fabs(glm::dot(scene.sun.travelDirection, normal)) +
-                        S * (g->illuminance(normal) + g->illuminance(-normal));
+    return y;
+}
+
+// The luminous flux through a portal plane of area S and normal n, from both sides: the sun's
+// E S |v_sun . n| and the sky's illuminance of either face (an independent quadrature of the
+// goniogram).
+double planeFlux(const Scene& scene, const Goniogram& g, double S, const glm::dvec3& n)
+{
+    return sunIlluminanceY_lux(scene) * S * std::fabs(glm::dot(scene.sun.travelDirection, n)) +
+           S * (g.illuminance(n) + g.illuminance(-n));
+}
+
+TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // One vertical pane (no overlaps, N = 1): E[Y(weight)] is the luminous flux through it.
+    test::SceneBuilder b;
+    const int m = b.material("m", glm::vec3(0.5f));
+    b.add("pane", rect({0, 1, 0}, {1.5f, 0, 0}, {0, 1.2f, 0}), m, PortalMark::Panes);
+    b.add("floor", rect({-3, 0, -3}, {6, 0, 0}, {0, 0, 6}), m);
+    const double alt = 30.0;
+    b.sun(alt, 160.0, 40000.0);
+    b.cieSky(8, 2500.0, alt, 160.0);
+    b.camera({0, 1, 2}, {0, 1, 0}, {0, 1, 0}, 60.0);
+    const Scene scene = b.build();
+    const auto g = buildSky(scene.sky);
+    const SkyTables sky = makeSkyTables(g);
+    const PortalEmission pe = setupPortalEmission(scene, sky, g, "", 8);
+    bool kept = false;
+    const auto ms = test::meanAndStdErr(emittedLuminances(*ctx, scene, pe, sky, FEN_OVERLAP_WEIGHT, 1u << 20, &kept));
+    EXPECT_TRUE(kept) << "a single pane: every candidate is kept";
+    const double flux = planeFlux(scene, *g, 1.5 * 1.2, glm::dvec3(0, 0, 1));
     EXPECT_NEAR(ms.mean, flux, 4.0 * ms.se) << "relative se " << ms.se / ms.mean;
     EXPECT_NEAR(pe.sunFlux_lm + pe.skyFlux_lm, flux, 1e-3 * flux);
+    EXPECT_LT(ms.se / ms.mean, 3e-3);
+}
+
+TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughEveryPlane)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Four planes of four orientations, the group chosen from a direction bin's table: with
+    // every crossing counted (--portal-overlap none), E[Y(weight)] is the sum of the planes'
+    // fluxes -- whatever P(g | bin), as long as the weight uses it (4 sigma).
+    const Scene scene = portalScene();
+    const auto g = buildSky(scene.sky);
+    const SkyTables sky = makeSkyTables(g);
+    const PortalEmission pe = setupPortalEmission(scene, sky, g, "", 8);
+    ASSERT_EQ(pe.portals.groups.size(), 4u);
+    ASSERT_GT(pe.groupRatio.size(), 4u * 2u) << "the sun's bin and at least one sky bin";
+    bool kept = false;
+    const auto ms = test::meanAndStdErr(emittedLuminances(*ctx, scene, pe, sky, FEN_OVERLAP_NONE, 1u << 21, &kept));
+    EXPECT_TRUE(kept);
+    double flux = 0.0;
+    for (const PortalGroup& grp : pe.portals.groups)
+        flux += planeFlux(scene, *g, grp.area_m2, grp.normal);
+    EXPECT_NEAR(ms.mean, flux, 4.0 * ms.se) << "relative se " << ms.se / ms.mean;
     EXPECT_LT(ms.se / ms.mean, 3e-3);
 }
 
