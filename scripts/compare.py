@@ -18,7 +18,8 @@ keyed by the scene's bytes and the settings.
 Writes to --out (default out/compare/<scene name>/):
   compare.csv          method, batches, paths, seconds, mean, noise, rmse, bias per batch
   summary.md, .json    per method: paths, mean ± s.e., bias against the reference (flagged when it
-                       exceeds 4 combined standard errors), noise, RMSE, efficiency 1 / (RMSE² s)
+                       exceeds 4 combined standard errors), noise, the noisiest 1 % of pixels' share
+                       of it (fireflies), RMSE, efficiency 1 / (RMSE² s)
   error_vs_time.png    RMSE (solid) and the noise estimate (dashed) against seconds, log-log
   efficiency.png       efficiency, the best unbiased method = 1; biased methods hatched
   strip.png            each method's image (preview) and its error map against the reference
@@ -145,6 +146,7 @@ def main():
             "bias_cd_m2": j["bias_cd_m2"], "bias_sigmas": j["bias_cd_m2"] / se if se > 0 else 0.0,
             "biased": abs(j["bias_cd_m2"]) > 4.0 * se,
             "noise_cd_m2": j["noise_std_err_cd_m2"], "rmse_cd_m2": j["rmse_cd_m2"],
+            "noise_top1_share": j.get("noise_top1_share"),
             "rms_cd_m2": j["rms_luminance_cd_m2"], "paths_per_second": j["paths_per_second"],
             "efficiency": 1.0 / (j["rmse_cd_m2"] ** 2 * seconds),
             "png": os.path.splitext(path)[0] + ".png", "error_png": os.path.splitext(path)[0] + ".error.png"})
@@ -159,12 +161,14 @@ def main():
                                                                  "mean_luminance_cd_m2", "noise_std_err_cd_m2",
                                                                  "device", "width", "height")},
                    "seconds_per_method": a.time, "methods": summary}, f, indent=1)
-    lines = ["| method | paths | mean ± s.e. (cd/m²) | bias vs reference | noise | RMSE | efficiency (best = 1) |",
-             "|---|---|---|---|---|---|---|"]
+    lines = ["| method | paths | mean ± s.e. (cd/m²) | bias vs reference | noise | noisiest 1 %'s share | RMSE | efficiency (best = 1) |",
+             "|---|---|---|---|---|---|---|---|"]
     for s in summary:
-        lines.append("| %s | %.3gM | %.4g ± %.2g | %+.3g (%+.1f σ)%s | %.3g | %.3g | %.2f%s |" % (
+        top = s["noise_top1_share"]
+        lines.append("| %s | %.3gM | %.4g ± %.2g | %+.3g (%+.1f σ)%s | %.3g | %s | %.3g | %.2f%s |" % (
             s["method"], s["paths"] / 1e6, s["mean_cd_m2"], s["mean_std_err_cd_m2"], s["bias_cd_m2"],
-            s["bias_sigmas"], " **biased**" if s["biased"] else "", s["noise_cd_m2"], s["rmse_cd_m2"],
+            s["bias_sigmas"], " **biased**" if s["biased"] else "", s["noise_cd_m2"],
+            "%.0f %%" % (100 * top) if top is not None else "–", s["rmse_cd_m2"],
             s["relative_efficiency"], " (biased)" if s["biased"] else ""))
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

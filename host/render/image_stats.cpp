@@ -1,7 +1,9 @@
 // image_stats.cpp — ROI statistics (image_stats.h).
 #include "render/image_stats.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "util/error.h"
@@ -41,12 +43,17 @@ RoiStats roiStats(const Image& image, const std::vector<double>& stdErr, const I
     RoiStats s;
     s.pixels = roi.pixels();
     double sum = 0.0, se = 0.0, sq = 0.0, rel = 0.0;
+    std::vector<double> variances;
+    if (!stdErr.empty())
+        variances.reserve(s.pixels);
     for (int y = roi.y0; y < roi.y1; ++y)
         for (int x = roi.x0; x < roi.x1; ++x) {
             const std::size_t p = static_cast<std::size_t>(y) * image.width + x;
             sum += image.luminance(p);
-            if (!stdErr.empty())
+            if (!stdErr.empty()) {
                 se += stdErr[p] * stdErr[p];
+                variances.push_back(stdErr[p] * stdErr[p]);
+            }
             if (reference) {
                 const double d = image.luminance(p) - reference->luminance(p);
                 const double r = reference->luminance(p);
@@ -65,6 +72,14 @@ RoiStats roiStats(const Image& image, const std::vector<double>& stdErr, const I
         }
     s.rmsLuminance_cd_m2 = std::sqrt(var / n);
     s.noiseStdErr_cd_m2 = std::sqrt(se / n);
+    if (se > 0.0) {
+        const std::size_t top = std::max<std::size_t>(1, variances.size() / 100);
+        std::nth_element(variances.begin(), variances.begin() + (top - 1), variances.end(), std::greater<double>());
+        double topSum = 0.0;
+        for (std::size_t i = 0; i < top; ++i)
+            topSum += variances[i];
+        s.noiseTop1Share = topSum / se;
+    }
     if (reference) {
         s.rmse_cd_m2 = std::sqrt(sq / n);
         s.relMse = rel / n;

@@ -29,6 +29,10 @@ struct RoiStats {
     // (A plain mean of SE fails where contributions are sparse: a pixel hit in one batch of 16
     // gets SE about equal to its value, whatever the method -- measured on the inner room.)
     double noiseStdErr_cd_m2 = 0.0;
+    // The share of sum(SE^2) that the noisiest 1 % of the ROI's pixels hold (at least one pixel):
+    // about 0.01 for noise spread evenly, near 1 when a few fireflies -- single paths of large
+    // weight -- make up the noise (measured on the house: docs/results/house.md).
+    double noiseTop1Share = 0.0;
     std::optional<double> rmse_cd_m2;   // vs reference: sqrt(mean((Y - Yref)^2))
     std::optional<double> relMse;       // vs reference: mean((Y - Yref)^2 / (Yref^2 + 0.01))
 };

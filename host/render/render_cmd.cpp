@@ -335,6 +335,7 @@ int runRender(const RenderOptions& opt)
     j["rms_luminance_cd_m2"] = st.rmsLuminance_cd_m2;
     // One batch (an interrupted render) has no spread to estimate the noise from.
     j["noise_std_err_cd_m2"] = r.batches >= 2 ? nlohmann::json(st.noiseStdErr_cd_m2) : nlohmann::json(nullptr);
+    j["noise_top1_share"] = r.batches >= 2 ? nlohmann::json(st.noiseTop1Share) : nlohmann::json(nullptr);
     // The ROI mean's own standard error: batches are independent, so the spread of their ROI
     // means measures it directly (pixels within a batch are correlated through shared paths).
     j["mean_std_err_cd_m2"] = r.roiMeanStdErr(0);
