@@ -141,8 +141,11 @@ TEST(CliRender, WritesExrPngAndJson)
     EXPECT_EQ(j["counters"]["fixed_point_overflows"], 0);
     EXPECT_GT(j["mean_luminance_cd_m2"].get<double>(), 0.0);
     for (const char* k : {"paths", "rays", "seconds", "rays_per_second", "paths_per_second",
-                          "rms_luminance_cd_m2", "noise_std_err_cd_m2", "mean_std_err_cd_m2", "roi"})
+                          "rms_luminance_cd_m2", "noise_std_err_cd_m2", "noise_top1_share", "mean_std_err_cd_m2", "roi"})
         EXPECT_TRUE(j.contains(k)) << k;
+    // At least the noisiest 1 % of the pixels' own share, at most all of it.
+    EXPECT_GE(j["noise_top1_share"].get<double>(), 0.01 - 1e-12);
+    EXPECT_LE(j["noise_top1_share"].get<double>(), 1.0);
     // --reference: the image against itself has zero error.
     const CliRun r2 = run("render " + scene + " --out " + dir + "/again.exr --paths 200000 --width 40 "
                           "--no-progress --reference " + dir + "/new/out.exr --roi 5,5,30,25");
