@@ -41,6 +41,22 @@ Scene portalScene(double sunAltitude = 35.0)
     return b.build();
 }
 
+// A scene's sky and its portal emission tables (bins of the BVH8 layout).
+struct PortalTables {
+    std::optional<Goniogram> sky;
+    SkyTables tables;
+    PortalEmission pe;
+};
+
+PortalTables portalTables(const Scene& scene)
+{
+    PortalTables t;
+    t.sky = buildSky(scene.sky);
+    t.tables = makeSkyTables(t.sky);
+    t.pe = setupPortalEmission(scene, t.tables, t.sky, "", 8);
+    return t;
+}
+
 // Triangle t's share of eq. (1) over a set of directions: sum over them of weight * S_t |v . n_t|,
 // from each triangle's own geometry (not the implementation's groups).
 std::vector<double> triangleWeights(const PortalSet& P, const std::vector<std::pair<glm::dvec3, double>>& dirs)
@@ -88,14 +104,12 @@ TEST(PortalSampling, TriangleChoiceFollowsEquation1PerDirectionBin)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     const Scene scene = portalScene();
-    const auto g = buildSky(scene.sky);
-    const SkyTables sky = makeSkyTables(g);
-    const PortalEmission pe = setupPortalEmission(scene, sky, g, "", 8);
-    const auto& P = pe.portals;
+    const PortalTables t = portalTables(scene);
+    const auto& P = t.pe.portals;
     const std::uint32_t n = 400000;
     // The sun's bin (a point sun): eq. (1) at its direction exactly.
     {
-        const std::vector<double> obs = drawTriangles(*ctx, pe, 0, scene.sun.travelDirection, n);
+        const std::vector<double> obs = drawTriangles(*ctx, t.pe, 0, scene.sun.travelDirection, n);
         std::vector<double> exp = triangleWeights(P, {{scene.sun.travelDirection, 1.0}});
         const double sum = std::accumulate(exp.begin(), exp.end(), 0.0);
         for (auto& e : exp)
@@ -104,26 +118,26 @@ TEST(PortalSampling, TriangleChoiceFollowsEquation1PerDirectionBin)
     }
     // Two sky bins (high and low): eq. (1) integrated over the bin's cells against the sky's
     // luminance, by a midpoint rule of its own.
-    const std::uint32_t R = sky.thetaNodes - 1, C = sky.phiNodes - 1;
+    const std::uint32_t R = t.tables.thetaNodes - 1, C = t.tables.phiNodes - 1;
     for (const std::uint32_t cell : {C / 3, (R - 1) * C + 2 * C / 3}) {
-        const std::uint32_t bin = pe.cellBin.at(cell);
+        const std::uint32_t bin = t.pe.cellBin.at(cell);
         ASSERT_GE(bin, 1u);
         std::vector<std::pair<glm::dvec3, double>> dirs;
         const int m = 6;
-        for (std::uint32_t k = 0; k < sky.cells; ++k) {
-            if (pe.cellBin[k] != bin)
+        for (std::uint32_t k = 0; k < t.tables.cells; ++k) {
+            if (t.pe.cellBin[k] != bin)
                 continue;
             const std::uint32_t i = k / C, j = k % C;
-            const double t0 = g->theta()[i], t1 = g->theta()[i + 1], p0 = g->phi()[j], p1 = g->phi()[j + 1];
+            const double t0 = t.sky->theta()[i], t1 = t.sky->theta()[i + 1], p0 = t.sky->phi()[j], p1 = t.sky->phi()[j + 1];
             for (int a = 0; a < m; ++a)
                 for (int b = 0; b < m; ++b) {
                     const double th = t0 + (t1 - t0) * (a + 0.5) / m, ph = p0 + (p1 - p0) * (b + 0.5) / m;
-                    dirs.push_back({skyDirection(th, ph), g->eval(th, ph) * std::sin(th) * (t1 - t0) * (p1 - p0)});
+                    dirs.push_back({skyDirection(th, ph), t.sky->eval(th, ph) * std::sin(th) * (t1 - t0) * (p1 - p0)});
                 }
         }
         ASSERT_FALSE(dirs.empty());
         // The direction handed over only decides the weight, not the choice.
-        const std::vector<double> obs = drawTriangles(*ctx, pe, bin, -dirs.front().first, n);
+        const std::vector<double> obs = drawTriangles(*ctx, t.pe, bin, -dirs.front().first, n);
         std::vector<double> exp = triangleWeights(P, dirs);
         const double sum = std::accumulate(exp.begin(), exp.end(), 0.0);
         for (auto& e : exp)
@@ -282,15 +296,13 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughThePortal)
     b.cieSky(8, 2500.0, alt, 160.0);
     b.camera({0, 1, 2}, {0, 1, 0}, {0, 1, 0}, 60.0);
     const Scene scene = b.build();
-    const auto g = buildSky(scene.sky);
-    const SkyTables sky = makeSkyTables(g);
-    const PortalEmission pe = setupPortalEmission(scene, sky, g, "", 8);
+    const PortalTables t = portalTables(scene);
     bool kept = false;
-    const auto ms = test::meanAndStdErr(emittedLuminances(*ctx, scene, pe, sky, FEN_OVERLAP_WEIGHT, 1u << 20, &kept));
+    const auto ms = test::meanAndStdErr(emittedLuminances(*ctx, scene, t.pe, t.tables, FEN_OVERLAP_WEIGHT, 1u << 20, &kept));
     EXPECT_TRUE(kept) << "a single pane: every candidate is kept";
-    const double flux = planeFlux(scene, *g, 1.5 * 1.2, glm::dvec3(0, 0, 1));
+    const double flux = planeFlux(scene, *t.sky, 1.5 * 1.2, glm::dvec3(0, 0, 1));
     EXPECT_NEAR(ms.mean, flux, 4.0 * ms.se) << "relative se " << ms.se / ms.mean;
-    EXPECT_NEAR(pe.sunFlux_lm + pe.skyFlux_lm, flux, 1e-3 * flux);
+    EXPECT_NEAR(t.pe.sunFlux_lm + t.pe.skyFlux_lm, flux, 1e-3 * flux);
     EXPECT_LT(ms.se / ms.mean, 3e-3);
 }
 
@@ -301,17 +313,15 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughEveryPlane)
     // every crossing counted (--portal-overlap none), E[Y(weight)] is the sum of the planes'
     // fluxes -- whatever P(g | bin), as long as the weight uses it (4 sigma).
     const Scene scene = portalScene();
-    const auto g = buildSky(scene.sky);
-    const SkyTables sky = makeSkyTables(g);
-    const PortalEmission pe = setupPortalEmission(scene, sky, g, "", 8);
-    ASSERT_EQ(pe.portals.groups.size(), 4u);
-    ASSERT_GT(pe.groupRatio.size(), 4u * 2u) << "the sun's bin and at least one sky bin";
+    const PortalTables t = portalTables(scene);
+    ASSERT_EQ(t.pe.portals.groups.size(), 4u);
+    ASSERT_GT(t.pe.groupRatio.size(), 4u * 2u) << "the sun's bin and at least one sky bin";
     bool kept = false;
-    const auto ms = test::meanAndStdErr(emittedLuminances(*ctx, scene, pe, sky, FEN_OVERLAP_NONE, 1u << 21, &kept));
+    const auto ms = test::meanAndStdErr(emittedLuminances(*ctx, scene, t.pe, t.tables, FEN_OVERLAP_NONE, 1u << 21, &kept));
     EXPECT_TRUE(kept);
     double flux = 0.0;
-    for (const PortalGroup& grp : pe.portals.groups)
-        flux += planeFlux(scene, *g, grp.area_m2, grp.normal);
+    for (const PortalGroup& grp : t.pe.portals.groups)
+        flux += planeFlux(scene, *t.sky, grp.area_m2, grp.normal);
     EXPECT_NEAR(ms.mean, flux, 4.0 * ms.se) << "relative se " << ms.se / ms.mean;
     EXPECT_LT(ms.se / ms.mean, 3e-3);
 }
