@@ -153,6 +153,11 @@ int main(int argc, char** argv)
                           "How the stages run: fused (one kernel per path, default on a CPU) or wavefront (default on a GPU)");
     renderCmd->add_option("--roulette-depth", render.rouletteDepth,
                           "Russian roulette from this surface interaction on; before it every path goes on (default 3)");
+    renderCmd->add_option("--split", render.split,
+                          "At its first diffuse hit, a path weighing k >= 2 times the mean emitted weight goes on as min(k, N) "
+                          "branches of 1/k the weight (1: never; default 1)");
+    renderCmd->add_option("--split-weight", render.splitWeight,
+                          "With --split: the weight unit k counts in, as a multiple of the mean emitted weight (default 1)");
     renderCmd->add_option("--pool", render.poolSize, "Path slots on the device (default: 2^16 CPU, 2^21 GPU)");
     renderCmd->add_option("--exposure", render.exposure, "PNG preview exposure (default: ROI mean to mid-grey)");
     renderCmd->add_option("--checkpoint", render.checkpointPath,

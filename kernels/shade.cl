@@ -1,17 +1,19 @@
 /* shade.cl — wavefront stage 3: what happens at each live path's hit (lib/shade_path.h).
  *
- * Work-item i, slot i: a miss ends the path; a surface is shaded by shade_path(), which may write
- * a camera connection for connect.cl. Writes paths[i] and connections[i] (pixel FEN_INVALID_ID
- * when there is none). Atomics: the alive counter (per work-group), the max-depth counter.
+ * Work-item i, slot i: a miss ends the path (or its branch); a surface is shaded by shade_path(),
+ * which may write a camera connection for connect.cl. Writes paths[i], splits[i] while branches of
+ * a split wait, and connections[i] (pixel FEN_INVALID_ID when there is none). Atomics: the alive counter (per work-group), the max-depth counter.
  */
 #include "lib/group_count.h"
 #include "lib/shade_path.h"
 
-/* Shades slot i; returns 1 if its path goes on. */
+/* Shades slot i; returns 1 if its path goes on. A branch of a split path that ends hands its slot
+   to the next branch (lib/shade_path.h next_branch). */
 static inline uint shade_one(uint i, global const RenderParams* params, global PathState* paths,
-                             global const SurfaceHit* hits, global const uint* prim_material,
-                             global const DevMaterial* materials, global const DevCamera* cam,
-                             global Connection* connections, volatile global ulong* counters)
+                             global SplitState* splits, global const SurfaceHit* hits,
+                             global const uint* prim_material, global const DevMaterial* materials,
+                             global const DevCamera* cam, global Connection* connections,
+                             volatile global ulong* counters)
 {
     if (i >= params->pool_size)
         return 0;
@@ -19,30 +21,36 @@ static inline uint shade_one(uint i, global const RenderParams* params, global P
     PathState p = paths[i];
     if (!(p.flags & FEN_PATH_ALIVE))
         return 0;
+    SplitState s;
+    if (p.flags & FEN_PATH_SPLIT)
+        s = splits[i];
     const SurfaceHit h = hits[i];
-    if (as_uint(h.normal.w) == FEN_INVALID_ID) {
-        paths[i].flags = 0;
-        return 0;
+    int alive = 0;
+    if (as_uint(h.normal.w) != FEN_INVALID_ID) {
+        Connection c;
+        alive = shade_path(params, &p, &h, prim_material, materials, cam, &c, &s, counters);
+        if (as_uint(c.org.w) != FEN_INVALID_ID)
+            connections[i] = c;
     }
-    Connection c;
-    const int alive = shade_path(params, &p, &h, prim_material, materials, cam, &c, counters);
-    if (as_uint(c.org.w) != FEN_INVALID_ID)
-        connections[i] = c;
+    if (!alive)
+        alive = next_branch(params, &p, &s, prim_material, materials, counters);
     if (!alive) {
         paths[i].flags = 0;
         return 0;
     }
+    if (p.flags & FEN_PATH_SPLIT)
+        splits[i] = s;
     paths[i] = p;
     return 1;
 }
 
 kernel void shade_paths(global const RenderParams* params, global PathState* paths,
-                        global const SurfaceHit* hits, global const uint* prim_material,
+                        global SplitState* splits, global const SurfaceHit* hits, global const uint* prim_material,
                         global const DevMaterial* materials, global const DevCamera* cam,
                         global Connection* connections, volatile global ulong* counters)
 {
     local uint alive_in_group;
-    const uint alive = shade_one(get_global_id(0), params, paths, hits, prim_material, materials,
-                                 cam, connections, counters);
+    const uint alive = shade_one(get_global_id(0), params, paths, splits, hits, prim_material,
+                                 materials, cam, connections, counters);
     group_count_add(counters + FEN_CTR_ALIVE, alive, &alive_in_group);
 }

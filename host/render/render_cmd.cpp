@@ -237,6 +237,10 @@ int runRender(const RenderOptions& opt)
         settings.kernels = parseKernelMode(opt.kernels);
     if (opt.rouletteDepth >= 0)
         settings.rouletteDepth = opt.rouletteDepth;
+    if (opt.split != RenderOptions::kUnset)
+        settings.splitMax = opt.split;
+    if (!std::isnan(opt.splitWeight))
+        settings.splitWeight = opt.splitWeight;
     settings.progress = opt.progress < 0 ? isatty(STDERR_FILENO) != 0 : opt.progress > 0;
     settings.rois = {roi};
     for (const auto& reg : regions)
@@ -306,6 +310,8 @@ int runRender(const RenderOptions& opt)
     j["seed"] = opt.seed;
     j["max_bounces"] = opt.maxBounces;
     j["roulette_depth"] = settings.rouletteDepth;
+    j["split_max"] = settings.splitMax;
+    j["split_weight"] = settings.splitWeight;
     j["kernel_mode"] = kernelModeName(r.kernelMode);
     j["bvh_layout"] = cat("bvh", r.bvhWidth);
     j["paths"] = r.paths;

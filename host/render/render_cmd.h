@@ -2,12 +2,14 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace fen {
 
 struct RenderOptions {
+    static constexpr int kUnset = std::numeric_limits<int>::min();
     std::string scenePath;
     std::string outPath;            // PATH.exr; PATH.png and PATH.json are written beside it
     std::uint64_t paths = 0;        // --paths
@@ -47,6 +49,8 @@ struct RenderOptions {
     double exposure = 0.0;          // PNG preview; 0 = automatic
     std::string kernels;            // --kernels wavefront|fused; empty: the device's default
     int rouletteDepth = -1;         // -1: the default of RenderSettings
+    int split = kUnset;             // unset: the default of RenderSettings (splitMax)
+    double splitWeight = std::numeric_limits<double>::quiet_NaN();  // NaN: RenderSettings' default
     int progress = -1;              // -1: when stderr is a terminal; 0 off; 1 on
     std::string checkpointPath;     // --checkpoint
     std::string checkpointEvery = "10min";  // --checkpoint-every: N min | N s | N batches

@@ -87,6 +87,10 @@ struct Renderer::Impl {
         p.pool_size = pool;
         p.camera_spp = static_cast<std::uint32_t>(st.cameraSpp);
         p.rr_depth = static_cast<std::uint32_t>(st.rouletteDepth);
+        p.split_max = static_cast<std::uint32_t>(st.splitMax);
+        p.split_weight = static_cast<float>(st.splitWeight * strategy->emittedFluxPerPath());
+        if (!(p.split_weight > 0.0f))
+            p.split_max = 1u;  // no light emitted: nothing to split
         wavefront->setParams(p);
     }
 
@@ -188,6 +192,8 @@ struct Renderer::Impl {
                 {"camera_spp", settings.cameraSpp},
                 {"max_bounces", settings.maxBounces},
                 {"roulette_depth", settings.rouletteDepth},
+                {"split_max", settings.splitMax},
+                {"split_weight", settings.splitWeight},
                 {"rois", rois},
                 {"method", methodName(e.method)},
                 {"portals", e.portals},
@@ -421,6 +427,10 @@ Renderer::Renderer(ocl::Context& ctx, const Scene& scene, const std::optional<Go
         throw Error(cat("--max-bounces ", settings.maxBounces, " must be at least 1"));
     if (settings.rouletteDepth < 0 || settings.rouletteDepth > 64)
         throw Error(cat("--roulette-depth ", settings.rouletteDepth, " must be in 0..64"));
+    if (settings.splitMax < 1 || settings.splitMax > 255)
+        throw Error(cat("--split ", settings.splitMax, " must be in 1..255 branches (1: never split)"));
+    if (!(settings.splitWeight > 0.0 && settings.splitWeight <= 1e6))
+        throw Error(cat("--split-weight ", settings.splitWeight, " must be in (0, 10^6]"));
     if (settings.batches > 1024)
         throw Error(cat("--batches ", settings.batches, " is beyond 1024: every batch has a fixed cost "
                         "(the camera pass, the statistics), and 16 already estimate the noise well"));

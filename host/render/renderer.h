@@ -56,6 +56,11 @@ struct RenderSettings {
     // Russian roulette from this surface interaction on (lib/shade_path.h). 3: the most efficient
     // across the inner room, the room and the bay window (docs/results/termination.md).
     int rouletteDepth = 3;
+    // Splitting at the first diffuse vertex (lib/shade_path.h): a path of weight Y >= 2 w, w =
+    // splitWeight times the emitted flux per path, goes on as min(floor(Y / w), splitMax) branches.
+    // splitMax 1: never.
+    int splitMax = 1;
+    double splitWeight = 1.0;
     bool progress = false;       // progress line on stderr
     std::vector<Roi> rois;       // regions whose mean luminance is tracked batch by batch
     std::function<void(const BatchProgress&)> onBatch;  // optional

@@ -30,6 +30,7 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     counters_ = ctx.buffer(CL_MEM_READ_WRITE, FEN_CTR_COUNT * 8, "counters");
     paths_ = ctx.buffer(CL_MEM_READ_WRITE, std::size_t{pool} * sizeof(dev::PathState), "path pool");
     hits_ = ctx.buffer(CL_MEM_READ_WRITE, std::size_t{pool} * sizeof(dev::SurfaceHit), "hits");
+    splits_ = ctx.buffer(CL_MEM_READ_WRITE, std::size_t{pool} * sizeof(dev::SplitState), "split paths");
     connections_ = ctx.buffer(CL_MEM_READ_WRITE, std::size_t{pool} * sizeof(dev::Connection),
                               "camera connections");
     cameraBuf_ = ctx.buffer(CL_MEM_READ_ONLY, sizeof camera, "camera", &camera);
@@ -71,7 +72,7 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     emit_.setArg(1, counters_);
     emit_.setArg(2, paths_);
     ocl::setKernelArgs(intersect_, paths_, hits_, pool, b.nodes(), b.packets());
-    ocl::setKernelArgs(shade_, paramsBuf_, paths_, hits_, scene.primMaterial(), scene.materials(),
+    ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
                        cameraBuf_, connections_, counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), film.accumulators(), strategy.cellStats(), *pixelScale, counters_);

@@ -70,7 +70,7 @@ private:
     dev::RenderParams params_{};
     std::uint32_t pool_;
     std::uint64_t extensionRays_ = 0;  // of the batch so far
-    cl::Buffer paramsBuf_, counters_, paths_, hits_, connections_, cameraBuf_;
+    cl::Buffer paramsBuf_, counters_, paths_, splits_, hits_, connections_, cameraBuf_;
     cl::Buffer noPixelScale_;  // bound when the strategy weighs no statistics by pixel
     cl::Kernel emit_, intersect_, shade_, connect_, cameraPass_, fused_;
     double buildSeconds_ = 0.0;

@@ -1,7 +1,7 @@
 /* fused_kernel.h — the whole light path in one kernel, for CPU devices (README "Kernels"): each
  * work-item takes path indices FEN_FUSED_CHUNK at a time from counters[FEN_CTR_NEXT_PATH] (so
  * the work balances whatever the paths' lengths) and runs each path to its end -- emit,
- * intersect, shade, connect -- with the path in registers, where the wavefront writes it to
+ * intersect, shade, connect, and the branches of a split path -- with the path in registers, where the wavefront writes it to
  * memory four times a bounce and launches four kernels an iteration.
  *
  * It is built from the strategy's emission file with -DFEN_FUSED (lib/emit_kernel.h includes it
@@ -45,19 +45,23 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
             FEN_EMITTER_EMIT(params, &emitter, path, &p);
 #endif
             ++emitted;
+            SplitState split; /* read only under FEN_PATH_SPLIT, which shade_path() sets with it */
             for (;;) {
                 ++extension;
                 const SurfaceHit h = closest_surface(nodes, packets, p.org.xyz, p.dir.xyz);
-                if (as_uint(h.normal.w) == FEN_INVALID_ID)
+                if (as_uint(h.normal.w) == FEN_INVALID_ID) {
+                    if (next_branch(params, &p, &split, prim_material, materials, counters))
+                        continue;
                     break;
+                }
                 Connection c;
-                const int alive = shade_path(params, &p, &h, prim_material, materials, cam, &c, counters);
+                const int alive = shade_path(params, &p, &h, prim_material, materials, cam, &c, &split, counters);
                 if (as_uint(c.org.w) != FEN_INVALID_ID) {
                     connect_path(params, &c, nodes, packets, prim_material, materials, accum, cell_stats,
                                  stats_pixel_scale, counters);
                     ++shadow;
                 }
-                if (!alive)
+                if (!alive && !next_branch(params, &p, &split, prim_material, materials, counters))
                     break;
             }
         }

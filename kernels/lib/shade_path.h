@@ -9,10 +9,18 @@
  *    q = max(rho), weight *= rho / q (its largest channel keeps its value); before it, every path
  *    goes on with weight *= rho (unbiased either way; which is more efficient: README "Path
  *    termination");
+ *  - splitting (params->split_max > 1): at its first diffuse vertex, after the camera connection,
+ *    a path of weight Y(beta) >= 2 split_weight goes on as k = min(floor(Y / split_weight),
+ *    split_max) branches of weight beta / k each, scattered independently from the vertex. Branch 0
+ *    goes on at once; when a branch ends, next_branch() starts the next from the vertex (kept in a
+ *    SplitState), with its own random numbers (the branch number in the top byte of path_hi).
+ *    Unbiased for any k: the branches' mean estimates what one path would. Where it pays: paths of
+ *    large weight, which adaptive emission draws from cells it keeps near the base density --
+ *    light that must bounce outside before it can enter (docs/results/house.md);
  *  - a path reaching params->max_depth interactions dies (counted, with its flux: a bias that is
  *    reported; the default cap is high enough that only endless paths meet it).
- * Invariant: the result depends only on the path, its hit and its random numbers (keyed by path
- * index and depth), never on which kernel or slot runs it.
+ * Invariant: the result depends only on the path, its hit, its split state and its random numbers
+ * (keyed by path index, branch and depth), never on which kernel or slot runs it.
  */
 #ifndef FEN_SHADE_PATH_H
 #define FEN_SHADE_PATH_H
@@ -25,11 +33,52 @@
 #include "lib/sampling.h"
 #include "lib/scene_access.h"
 
+/* The diffuse scatter on side n (unit) of a surface of albedo rho: Russian roulette from
+   params->rr_depth on, else weight times rho; a cosine-weighted direction. Returns 1 with *next if
+   the path goes on. */
+static inline int scatter_diffuse(global const RenderParams* params, PathState* p, float3 albedo,
+                                  float3 n, float4 u, float3* next)
+{
+    if (p->depth < params->rr_depth) {
+        p->beta.xyz *= albedo;
+        *next = sample_cosine_hemisphere(n, u.y, u.z);
+        return albedo.x > 0.0f || albedo.y > 0.0f || albedo.z > 0.0f;
+    }
+    const float q = fmax(albedo.x, fmax(albedo.y, albedo.z));
+    if (u.x < q) {
+        p->beta.xyz *= albedo / q;
+        *next = sample_cosine_hemisphere(n, u.y, u.z);
+        return 1;
+    }
+    return 0;
+}
+
+/* After the interaction at x: the depth count, the cap on it, and the next ray. Returns alive. */
+static inline int leave_vertex(global const RenderParams* params, PathState* p, float3 x, float offset_m,
+                               float3 ng, float3 next, int alive, volatile global ulong* counters)
+{
+    p->depth += 1;
+    if (alive && p->depth >= params->max_depth) {
+        /* the cap guards against endless paths; what it removes is measured (rare: direct atomics) */
+        alive = 0;
+        counter_add(counters, FEN_CTR_MAX_DEPTH, 1);
+        const float y = 0.2126f * p->beta.x + 0.7152f * p->beta.y + 0.0722f * p->beta.z;
+        fixed_add128(counters + FEN_CTR_CUT_FLUX_LO, y * params->fixed_scale);
+    }
+    if (!alive)
+        return 0;
+    p->org = (float4)(offset_ray_origin(x, offset_m, ng, next), 0.0f);
+    p->dir = (float4)(next, 0.0f);
+    return 1;
+}
+
 /* Shades path *p at hit *h (a surface, not a miss). Sets *c to the camera connection, its pixel
-   FEN_INVALID_ID when there is none. Returns 1 if the path goes on, with its next ray in *p. */
+   FEN_INVALID_ID when there is none; may split the path (*s). Returns 1 if the path goes on, with
+   its next ray in *p. */
 static inline int shade_path(global const RenderParams* params, PathState* p, const SurfaceHit* h,
                              global const uint* prim_material, global const DevMaterial* materials,
-                             global const DevCamera* cam, Connection* c, volatile global ulong* counters)
+                             global const DevCamera* cam, Connection* c, SplitState* s,
+                             volatile global ulong* counters)
 {
     c->org.w = as_float(FEN_INVALID_ID);
     const uint prim = as_uint(h->normal.w);
@@ -39,7 +88,7 @@ static inline int shade_path(global const RenderParams* params, PathState* p, co
     const float3 x = h->pos.xyz;
     const float3 dir = p->dir.xyz;
     const float4 u = rng_path(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_SCATTER);
-    float3 next;
+    float3 next = dir;
     int alive = 1;
 
     if (material_is_glass(m)) {
@@ -70,34 +119,54 @@ static inline int shade_path(global const RenderParams* params, PathState* p, co
                 }
             }
         }
-        if (p->depth < params->rr_depth) {
-            p->beta.xyz *= albedo;
-            alive = albedo.x > 0.0f || albedo.y > 0.0f || albedo.z > 0.0f;
-            next = sample_cosine_hemisphere(n, u.y, u.z);
-        } else {
-            const float q = fmax(albedo.x, fmax(albedo.y, albedo.z));
-            if (u.x < q) {
-                p->beta.xyz *= albedo / q;
-                next = sample_cosine_hemisphere(n, u.y, u.z);
-            } else {
-                alive = 0;
-                next = dir;
+        /* not the portal complement's estimate-only paths: what they measure needs no precision */
+        if (params->split_max > 1u && !(p->flags & FEN_PATH_BRANCHED) &&
+            !(as_uint(p->beta.w) & FEN_PART_ESTIMATE_ONLY)) {
+            p->flags |= FEN_PATH_BRANCHED;
+            const float y = 0.2126f * p->beta.x + 0.7152f * p->beta.y + 0.0722f * p->beta.z;
+            const uint k = (uint)fmin(y / params->split_weight, (float)params->split_max);
+            if (k >= 2u) {
+                p->beta.xyz /= (float)k;
+                s->pos = (float4)(x, offset_m);
+                s->normal = (float4)(n, as_float(prim));
+                s->beta = (float4)(p->beta.xyz, 0.0f);
+                s->depth = p->depth;
+                s->next = 1u;
+                s->count = k;
+                s->path_hi = p->path_hi;
+                p->flags |= FEN_PATH_SPLIT;
             }
         }
+        alive = scatter_diffuse(params, p, albedo, n, u, &next);
     }
-    p->depth += 1;
-    if (alive && p->depth >= params->max_depth) {
-        /* the cap guards against endless paths; what it removes is measured (rare: direct atomics) */
-        alive = 0;
-        counter_add(counters, FEN_CTR_MAX_DEPTH, 1);
-        const float y = 0.2126f * p->beta.x + 0.7152f * p->beta.y + 0.0722f * p->beta.z;
-        fixed_add128(counters + FEN_CTR_CUT_FLUX_LO, y * params->fixed_scale);
+    return leave_vertex(params, p, x, offset_m, ng, next, alive, counters);
+}
+
+/* When a branch of a split path ends (a miss, roulette, the cap): starts the next branch waiting in
+   *s, if any -- the scatter at the split vertex with the branch's own random numbers. Returns 1
+   with its first ray in *p, 0 when no branch is left to go on. */
+static inline int next_branch(global const RenderParams* params, PathState* p, SplitState* s,
+                              global const uint* prim_material, global const DevMaterial* materials,
+                              volatile global ulong* counters)
+{
+    while (p->flags & FEN_PATH_SPLIT) {
+        const uint b = s->next++;
+        if (s->next >= s->count)
+            p->flags &= ~FEN_PATH_SPLIT;
+        p->path_hi = s->path_hi | (b << 24);
+        p->depth = s->depth;
+        p->beta.xyz = s->beta.xyz;
+        const float3 x = s->pos.xyz, n = s->normal.xyz;
+        const float3 albedo = materials[prim_material[as_uint(s->normal.w)]].albedo.xyz;
+        const float4 u = rng_path(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_SCATTER);
+        float3 next = n;
+        const int alive = scatter_diffuse(params, p, albedo, n, u, &next);
+        if (leave_vertex(params, p, x, s->pos.w, n, next, alive, counters)) {
+            p->flags |= FEN_PATH_ALIVE;
+            return 1;
+        }
     }
-    if (!alive)
-        return 0;
-    p->org = (float4)(offset_ray_origin(x, offset_m, ng, next), 0.0f);
-    p->dir = (float4)(next, 0.0f);
-    return 1;
+    return 0;
 }
 
 #endif /* FEN_SHADE_PATH_H */

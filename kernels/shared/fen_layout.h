@@ -38,6 +38,11 @@
     X(RenderParams, stats_scale) \
     X(RenderParams, batch)   \
     X(RenderParams, rr_depth) \
+    X(RenderParams, split_weight) \
+    X(RenderParams, split_max) \
+    X(SplitState, normal)    \
+    X(SplitState, depth)     \
+    X(SplitState, path_hi)   \
     X(SourceParams, sky_scale) \
     X(SourceParams, alias_shift) \
     X(PortalParams, overlap) \

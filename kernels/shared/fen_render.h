@@ -21,6 +21,8 @@
 
 /* PathState.flags */
 #define FEN_PATH_ALIVE 1u
+#define FEN_PATH_SPLIT 2u     /* branches of a split wait in the path's SplitState (lib/shade_path.h) */
+#define FEN_PATH_BRANCHED 4u  /* past its first diffuse vertex: a path splits there or never */
 
 /* Counters (fen_u64 each), read back after every iteration. */
 #define FEN_CTR_NEXT_PATH 0        /* next path index to emit (the emit kernel's ticket) */
@@ -82,6 +84,21 @@ typedef struct {
 FEN_ASSERT_SIZE(PathState, 64);
 FEN_ASSERT_OFFSET(PathState, path_lo, 48);
 
+/* A path split at its first diffuse vertex (lib/shade_path.h): where the branches still to run
+   start from. Kept beside the path (a slot's own buffer in the wavefront, registers in the fused
+   kernel), read only when a branch ends. */
+typedef struct {
+    fen_float4 pos;     /* xyz: the vertex (m); w: how far a ray leaving it must start off the surface */
+    fen_float4 normal;  /* xyz: unit normal on the side the light arrived at; w: as_uint primitive */
+    fen_float4 beta;    /* rgb: each branch's weight on arrival; w: unused */
+    fen_u32 depth;      /* interactions before the vertex */
+    fen_u32 next;       /* the next branch to start */
+    fen_u32 count;      /* branches in all */
+    fen_u32 path_hi;    /* the path's own path_hi; branch b puts b in its top byte (its random numbers) */
+} SplitState;
+FEN_ASSERT_SIZE(SplitState, 64);
+FEN_ASSERT_OFFSET(SplitState, depth, 48);
+
 typedef struct {
     fen_float4 org;     /* xyz: shadow-ray origin (offset off the surface); w: as_uint pixel or FEN_INVALID_ID */
     fen_float4 to_cam;  /* xyz: camera position - org, the segment t in (0, 1) */
@@ -107,12 +124,17 @@ typedef struct {
     fen_u32 camera_spp;      /* camera-pass samples per pixel in this batch */
     fen_u32 batch;           /* batch number, for the camera pass's random numbers */
     fen_u32 rr_depth;        /* Russian roulette from this surface interaction on (lib/shade_path.h) */
+    fen_f32 split_weight;    /* a path splits at its first diffuse vertex into floor(Y(beta) / this) */
+    fen_u32 split_max;       /* ... branches, at most this many (1: never) */
+    fen_u32 pad0;
+    fen_u32 pad1;
 } RenderParams;
-FEN_ASSERT_SIZE(RenderParams, 80);
+FEN_ASSERT_SIZE(RenderParams, 96);
 FEN_ASSERT_OFFSET(RenderParams, path_end, 32);
 FEN_ASSERT_OFFSET(RenderParams, seed, 40);
 FEN_ASSERT_OFFSET(RenderParams, batch, 72);
 FEN_ASSERT_OFFSET(RenderParams, rr_depth, 76);
+FEN_ASSERT_OFFSET(RenderParams, split_weight, 80);
 
 FEN_NS_END
 

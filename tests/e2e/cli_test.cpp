@@ -462,6 +462,12 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     expectError(run("render " + good + out + " --method adaptive --adaptive-estimate median"), 1,
                 "--adaptive-estimate");
     expectError(run("render " + good + out + " --method adaptive --adaptive-max-cells 8"), 1, "--adaptive-max-cells 8");
+    // splitting: a count of branches, a positive weight unit -- never silently the default
+    expectError(run("render " + good + out + " --split 0"), 1, "--split 0");
+    expectError(run("render " + good + out + " --split -1"), 1, "--split -1");
+    expectError(run("render " + good + out + " --split 256"), 1, "--split 256");
+    expectError(run("render " + good + out + " --split 4 --split-weight 0"), 1, "--split-weight 0");
+    expectError(run("render " + good + out + " --split 4 --split-weight -3"), 1, "--split-weight -3");
 }
 
 // Scenes from other people (README, "Untrusted scenes"): one line naming the file and the glTF

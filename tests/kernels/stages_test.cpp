@@ -64,6 +64,7 @@ struct Stages {
         cl::Buffer params = ctx.buffer(CL_MEM_READ_ONLY, sizeof p, "params", &p);
         cl::Buffer paths = ctx.buffer(CL_MEM_READ_WRITE, n * sizeof(dev::PathState), "paths", in.data());
         cl::Buffer hits = ctx.buffer(CL_MEM_READ_WRITE, n * sizeof(dev::SurfaceHit), "hits");
+        cl::Buffer splits = ctx.buffer(CL_MEM_READ_WRITE, n * sizeof(dev::SplitState), "split paths");
         cl::Buffer conns = ctx.buffer(CL_MEM_READ_WRITE, n * sizeof(dev::Connection), "connections");
         cl::Buffer camBuf = ctx.buffer(CL_MEM_READ_ONLY, sizeof cam, "camera", &cam);
         std::vector<std::uint64_t> zeros(FEN_CTR_COUNT, 0), accZero(std::size_t(width) * height * 6, 0);
@@ -80,7 +81,7 @@ struct Stages {
         cl::Kernel shade(ctx.program("shade.cl", defs), "shade_paths");
         cl::Kernel connect(ctx.program("connect.cl", connectDefs), "connect_paths");
         ocl::setKernelArgs(isect, paths, hits, n, ds.bvh().nodes(), ds.bvh().packets());
-        ocl::setKernelArgs(shade, params, paths, hits, ds.primMaterial(), ds.materials(), camBuf, conns,
+        ocl::setKernelArgs(shade, params, paths, splits, hits, ds.primMaterial(), ds.materials(), camBuf, conns,
                            counters);
         ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.primMaterial(),
                            ds.materials(), accum, stats, noScale, counters);

@@ -233,9 +233,10 @@ TEST(Analytic, SunThroughAGlassPaneLandsWhereGeometrySays)
     EXPECT_EQ(t.result.roiMean(1), 0.0) << "light outside the geometric sun patch";
 }
 
-TEST(Analytic, IntegratingSphereConservesEnergyOverManyBounces)
+// The integrating sphere below, rendered with `paths` paths and settings changed by `tweak`.
+void integratingSphere(ocl::Context& ctx, std::uint64_t paths, const std::function<void(RenderSettings&)>& tweak,
+                       const char* what)
 {
-    FEN_CL_CONTEXT_OR_SKIP(ctx);
     // A white sphere (albedo 0.8) with a polar cap of half-angle 30 deg removed, under a uniform
     // sky: every wall point has the same luminance, rho L f / (1 - rho (1 - f)) with f the cap's
     // share of the sphere, (1 - cos 30)/2 -- the integrating-sphere result, which holds because a
@@ -260,12 +261,29 @@ TEST(Analytic, IntegratingSphereConservesEnergyOverManyBounces)
     b.uniformSky(1000.0);
     b.camera({0, 0, 0}, {0, -1, 0}, {0, 0, -1}, 60.0);
     const int W = 32, H = 32;
-    const auto t = test::renderScene(*ctx, b.build(), W, H, 8u << 20, {Roi{0, 0, W, H}}, 1, 200);
+    const auto t = test::renderScene(ctx, b.build(), W, H, paths, {Roi{0, 0, W, H}}, 1, 200, tweak);
     expectClean(t.result);
     // f from the tessellation's own cap: rings are at exact multiples of 180/rings degrees.
     const double capAngle = M_PI * capRings / rings;
     const double f = (1.0 - std::cos(capAngle)) / 2.0;
-    expectMean(t.result, 0, rho * 1000.0 * f / (1.0 - rho * (1.0 - f)), 0.01, "integrating sphere");
+    expectMean(t.result, 0, rho * 1000.0 * f / (1.0 - rho * (1.0 - f)), 0.01, what);
+}
+
+TEST(Analytic, IntegratingSphereConservesEnergyOverManyBounces)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    integratingSphere(*ctx, 8u << 20, {}, "integrating sphere");
+}
+
+TEST(Analytic, SplitPathsConserveEnergy)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Every path splits at its first hit into 4 branches of a quarter of its weight (a weight unit
+    // far below any path's): the branches' sum must carry exactly the light one path would.
+    integratingSphere(*ctx, 2u << 20, [](RenderSettings& s) {
+        s.splitMax = 4;
+        s.splitWeight = 1e-6;
+    }, "integrating sphere, split paths");
 }
 
 TEST(Analytic, SkySeenDirectlyAndThroughGlass)

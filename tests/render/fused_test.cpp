@@ -1,7 +1,7 @@
 // fused_test.cpp — the fused kernel (lib/fused_kernel.h) and the wavefront stages give
 // bit-identical renders for the same seed: image, per-batch statistics, counters and, for the
 // adaptive strategy, the learned grid -- for every strategy, with glass in the scene, with
-// Russian roulette from the first interaction or later. So the faster of the two can never be
+// Russian roulette from the first interaction or later, with paths split at their first hit. So the faster of the two can never be
 // the wrong one.
 #include <gtest/gtest.h>
 
@@ -21,6 +21,8 @@ struct Case {
     EmissionMethod method;
     EmissionMethod base;
     int rouletteDepth;
+    int splitMax = 1;
+    double splitWeight = 1.0;
 };
 
 RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
@@ -35,6 +37,8 @@ RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
     s.seed = 11;
     s.kernels = mode;
     s.rouletteDepth = c.rouletteDepth;
+    s.splitMax = c.splitMax;
+    s.splitWeight = c.splitWeight;
     s.rois = {Roi{0, 0, 48, 36}};
     Renderer r(ctx, scene, sky, scene.cameras.at(0), 48, 36, s);
     return r.render();
@@ -73,7 +77,11 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"uniform_rr3", "room.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform, 3},
                       Case{"portal_glass", "bay_window.gltf", EmissionMethod::Portal, EmissionMethod::Uniform, 0},
                       Case{"adaptive", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, 0},
-                      Case{"adaptive_portal", "inner_room.gltf", EmissionMethod::Adaptive, EmissionMethod::Portal, 2}),
+                      Case{"adaptive_portal", "inner_room.gltf", EmissionMethod::Adaptive, EmissionMethod::Portal, 2},
+                      // splitting: the branches' slot hand-over in the wavefront against the fused loop
+                      Case{"adaptive_split", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, 3, 16},
+                      Case{"uniform_split_all", "bay_window.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform, 1, 5,
+                           0.01}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -104,7 +104,8 @@ std::vector<Triangle> rect(glm::vec3 p, glm::vec3 u, glm::vec3 v)
 }
 
 TestRender renderScene(ocl::Context& ctx, const Scene& scene, int width, int height,
-                       std::uint64_t paths, std::vector<Roi> rois, std::uint32_t seed, int maxBounces)
+                       std::uint64_t paths, std::vector<Roi> rois, std::uint32_t seed, int maxBounces,
+                       const std::function<void(RenderSettings&)>& tweak)
 {
     TestRender t;
     t.sky = buildSky(scene.sky);
@@ -118,6 +119,8 @@ TestRender renderScene(ocl::Context& ctx, const Scene& scene, int width, int hei
     s.seed = seed;
     s.maxBounces = maxBounces;
     s.rois = std::move(rois);
+    if (tweak)
+        tweak(s);
     Renderer r(ctx, scene, t.sky, scene.cameras.at(0), width, height, s);
     t.result = r.render();
     return t;

@@ -1,6 +1,7 @@
 // render_support.h — analytic test scenes built in code, and rendering them on the test device.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,10 +41,11 @@ struct TestRender {
     std::optional<Goniogram> sky;
 };
 
-// Renders with `paths` light paths in 16 batches (seed 1 unless given), tracking `rois`.
+// Renders with `paths` light paths in 16 batches (seed 1 unless given), tracking `rois`;
+// `tweak` may change the other settings.
 TestRender renderScene(ocl::Context& ctx, const Scene& scene, int width, int height,
                        std::uint64_t paths, std::vector<Roi> rois, std::uint32_t seed = 1,
-                       int maxBounces = 1024);
+                       int maxBounces = 1024, const std::function<void(RenderSettings&)>& tweak = {});
 
 // Configuration factor from a differential horizontal element at `p` (facing +y) to the
 // horizontal rectangle [x0,x1] x [z0,z1] at height y > p.y (Siegel & Howell's corner formula,
