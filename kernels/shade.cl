@@ -2,7 +2,8 @@
  *
  * Work-item i, slot i: a miss ends the path (or its branch); a surface is shaded by shade_path(),
  * which may write a camera connection for connect.cl. Writes paths[i], splits[i] while branches of
- * a split wait, and connections[i] (pixel FEN_INVALID_ID when there is none). Atomics: the alive counter (per work-group), the max-depth counter.
+ * a split wait, and connections[i] (pixel FEN_INVALID_ID when there is none). Atomics: the alive
+ * counter (per work-group), the max-depth counter.
  */
 #include "lib/group_count.h"
 #include "lib/shade_path.h"
@@ -45,8 +46,8 @@ static inline uint shade_one(uint i, global const RenderParams* params, global P
 }
 
 kernel void shade_paths(global const RenderParams* params, global PathState* paths,
-                        global SplitState* splits, global const SurfaceHit* hits, global const uint* prim_material,
-                        global const DevMaterial* materials, global const DevCamera* cam,
+                        global SplitState* splits, global const SurfaceHit* hits,
+                        global const uint* prim_material, global const DevMaterial* materials, global const DevCamera* cam,
                         global Connection* connections, volatile global ulong* counters)
 {
     local uint alive_in_group;

@@ -60,6 +60,12 @@ static inline void splat_rgb(volatile global ulong* accum, uint pixel, float3 va
     }
 }
 
+/* Luminance Y of linear rgb (DESIGN.md §1), as the host's Image::luminance weighs it. */
+static inline float rgb_luminance(float3 c)
+{
+    return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
+
 /* A learning strategy's statistics (DESIGN.md §3.3): the luminance of a contribution that reached
    the camera and its square, added to the emission cell its path started in, and a count. The
    cells' probabilities are what these steer, never the image's expectation, so a value out of
@@ -67,7 +73,7 @@ static inline void splat_rgb(volatile global ulong* accum, uint pixel, float3 va
 static inline void cell_stats_add(volatile global ulong* cell_stats, uint cell, float3 value,
                                   float scale, float scale_sq, volatile global ulong* counters)
 {
-    const float y = 0.2126f * value.x + 0.7152f * value.y + 0.0722f * value.z;
+    const float y = rgb_luminance(value);
     volatile global ulong* s = cell_stats + FEN_CELL_STATS_WORDS * (ulong)cell;
     if (!fixed_add128(s + FEN_CELL_SUM_LO, y * scale) || !fixed_add128(s + FEN_CELL_SUMSQ_LO, y * y * scale_sq))
         counter_add(counters, FEN_CTR_STATS_OVERFLOWS, 1);

@@ -62,7 +62,7 @@ static inline int leave_vertex(global const RenderParams* params, PathState* p, 
         /* the cap guards against endless paths; what it removes is measured (rare: direct atomics) */
         alive = 0;
         counter_add(counters, FEN_CTR_MAX_DEPTH, 1);
-        const float y = 0.2126f * p->beta.x + 0.7152f * p->beta.y + 0.0722f * p->beta.z;
+        const float y = rgb_luminance(p->beta.xyz);
         fixed_add128(counters + FEN_CTR_CUT_FLUX_LO, y * params->fixed_scale);
     }
     if (!alive)
@@ -123,7 +123,7 @@ static inline int shade_path(global const RenderParams* params, PathState* p, co
         if (params->split_max > 1u && !(p->flags & FEN_PATH_BRANCHED) &&
             !(as_uint(p->beta.w) & FEN_PART_ESTIMATE_ONLY)) {
             p->flags |= FEN_PATH_BRANCHED;
-            const float y = 0.2126f * p->beta.x + 0.7152f * p->beta.y + 0.0722f * p->beta.z;
+            const float y = rgb_luminance(p->beta.xyz);
             const uint k = (uint)fmin(y / params->split_weight, (float)params->split_max);
             if (k >= 2u) {
                 p->beta.xyz /= (float)k;

@@ -179,14 +179,7 @@ TEST(Analytic, SunThroughAGlassPaneLandsWhereGeometrySays)
     const float S = 4.0f, Hc = 2.0f;
     const float px0 = 1.5f, px1 = 2.5f, pz0 = 2.5f, pz1 = 3.5f;
     b.add("floor", rect({0, 0, 0}, {S, 0, 0}, {0, 0, S}), b.material("floor", glm::vec3(0.5f)));
-    std::vector<Triangle> shell;
-    for (const auto& r : {rect({0, 0, 0}, {S, 0, 0}, {0, Hc, 0}), rect({0, 0, S}, {S, 0, 0}, {0, Hc, 0}),
-                          rect({0, 0, 0}, {0, 0, S}, {0, Hc, 0}), rect({S, 0, 0}, {0, 0, S}, {0, Hc, 0}),
-                          rect({0, Hc, 0}, {S, 0, 0}, {0, 0, pz0}), rect({0, Hc, pz1}, {S, 0, 0}, {0, 0, S - pz1}),
-                          rect({0, Hc, pz0}, {px0, 0, 0}, {0, 0, pz1 - pz0}),
-                          rect({px1, Hc, pz0}, {S - px1, 0, 0}, {0, 0, pz1 - pz0})})
-        shell.insert(shell.end(), r.begin(), r.end());
-    b.add("shell", shell, black);
+    b.add("shell", test::boxWithCeilingOpening(S, Hc, px0, px1, pz0, pz1), black);
     const glm::vec3 T(0.9f);
     b.add("pane", rect({px0, Hc, pz0}, {px1 - px0, 0, 0}, {0, 0, pz1 - pz0}), b.glass("glass", T, 1.5f));
     const double E = 50000.0, h = 60.0;

@@ -142,15 +142,15 @@ double cornerFactor(double a, double b, double c)
 
 }  // namespace
 
-std::vector<Triangle> boxWithCeilingOpening(float S, float h, float o0, float o1)
+std::vector<Triangle> boxWithCeilingOpening(float S, float h, float x0, float x1, float z0, float z1)
 {
     std::vector<Triangle> w;
     for (const auto& r : {rect({0, 0, 0}, {S, 0, 0}, {0, h, 0}), rect({0, 0, S}, {S, 0, 0}, {0, h, 0}),
                           rect({0, 0, 0}, {0, 0, S}, {0, h, 0}), rect({S, 0, 0}, {0, 0, S}, {0, h, 0}),
                           // the ceiling around the opening
-                          rect({0, h, 0}, {S, 0, 0}, {0, 0, o0}), rect({0, h, o1}, {S, 0, 0}, {0, 0, S - o1}),
-                          rect({0, h, o0}, {o0, 0, 0}, {0, 0, o1 - o0}),
-                          rect({o1, h, o0}, {S - o1, 0, 0}, {0, 0, o1 - o0})})
+                          rect({0, h, 0}, {S, 0, 0}, {0, 0, z0}), rect({0, h, z1}, {S, 0, 0}, {0, 0, S - z1}),
+                          rect({0, h, z0}, {x0, 0, 0}, {0, 0, z1 - z0}),
+                          rect({x1, h, z0}, {S - x1, 0, 0}, {0, 0, z1 - z0})})
         w.insert(w.end(), r.begin(), r.end());
     return w;
 }

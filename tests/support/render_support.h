@@ -56,9 +56,14 @@ double viewFactorToCeilingRect(glm::dvec3 p, double x0, double x1, double z0, do
 glm::dvec3 pixelOnPlaneY(const CameraSpec& cam, int width, int height, double px, double py,
                          double planeY);
 
-// The walls and ceiling of an S x S box of height h (x, z in [0, S]) whose ceiling has a square
-// opening [o0, o1]^2: the shell of the analytic "floor under an opening" scenes.
-std::vector<Triangle> boxWithCeilingOpening(float S, float h, float o0, float o1);
+// The walls and ceiling of an S x S box of height h (x, z in [0, S]) whose ceiling has the
+// opening [x0, x1] x [z0, z1]: the shell of the analytic "floor under an opening" scenes.
+std::vector<Triangle> boxWithCeilingOpening(float S, float h, float x0, float x1, float z0, float z1);
+// ... a square opening [o0, o1]^2.
+inline std::vector<Triangle> boxWithCeilingOpening(float S, float h, float o0, float o1)
+{
+    return boxWithCeilingOpening(S, h, o0, o1, o0, o1);
+}
 
 // The mean over `roi` of the floor's exact luminance rho L F under that opening, lit by a uniform
 // sky of luminance L, F each pixel's configuration factor to the opening.
