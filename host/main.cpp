@@ -136,6 +136,12 @@ int main(int argc, char** argv)
                           "With adaptive: pseudo-paths of the prior in every cell (default 32)");
     renderCmd->add_option("--adaptive-weights", render.adaptiveWeights,
                           "With adaptive: batches weigh by predicted precision, or all alike: predicted (default) or equal");
+    renderCmd->add_option("--adaptive-guide", render.adaptiveGuide,
+                          "With adaptive: also learn where the first bounce sends light to the camera, on or off (default off)");
+    renderCmd->add_option("--adaptive-guide-share", render.adaptiveGuideShare,
+                          "With adaptive --adaptive-guide on: the uniform share kept in every learned bounce table (default 0.25)");
+    renderCmd->add_option("--adaptive-guide-voxels", render.adaptiveGuideVoxels,
+                          "With adaptive --adaptive-guide on: guide voxels across the scene's bounding radius (default 32)");
     renderCmd->add_option("--adaptive-target", render.adaptiveTarget,
                           "With adaptive: minimise the absolute (default) or the relative squared error per pixel");
     renderCmd->add_option("--adaptive-max-cells", render.adaptiveMaxCells,

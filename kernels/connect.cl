@@ -2,7 +2,8 @@
  * (lib/connect_path.h).
  *
  * Work-item i: if connections[i] names a pixel, connect_path() traces and splats it.
- * Arguments follow connect_path(); stats_pixel_scale is read only with FEN_STATS_PIXEL_SCALE.
+ * Arguments follow connect_path(); stats_pixel_scale is read only with FEN_STATS_PIXEL_SCALE,
+ * guide_stats only for connections with a first-bounce guide record.
  * Atomics: pixel accumulators, cell statistics, shadow-ray counter (per work-group).
  */
 #include "lib/connect_path.h"
@@ -14,7 +15,7 @@ static inline uint connect_one(uint i, global const RenderParams* params,
                                global const TriPacket4* packets, global const uint* prim_material,
                                global const DevMaterial* materials, volatile global ulong* accum,
                                volatile global ulong* cell_stats, global const float* stats_pixel_scale,
-                               volatile global ulong* counters)
+                               volatile global ulong* guide_stats, volatile global ulong* counters)
 {
     if (i >= params->pool_size)
         return 0;
@@ -22,7 +23,7 @@ static inline uint connect_one(uint i, global const RenderParams* params,
     if (as_uint(c.org.w) == FEN_INVALID_ID)
         return 0;
     connect_path(params, &c, nodes, packets, prim_material, materials, accum, cell_stats, stats_pixel_scale,
-                 counters);
+                 guide_stats, counters);
     return 1;
 }
 
@@ -30,11 +31,12 @@ kernel void connect_paths(global const RenderParams* params, global const Connec
                           global const BvhNode* nodes, global const TriPacket4* packets,
                           global const uint* prim_material, global const DevMaterial* materials,
                           volatile global ulong* accum, volatile global ulong* cell_stats,
-                          global const float* stats_pixel_scale, volatile global ulong* counters)
+                          global const float* stats_pixel_scale, volatile global ulong* guide_stats,
+                          volatile global ulong* counters)
 {
     local uint traced_in_group;
     const uint traced = connect_one(get_global_id(0), params, connections, nodes, packets,
                                     prim_material, materials, accum, cell_stats, stats_pixel_scale,
-                                    counters);
+                                    guide_stats, counters);
     group_count_add(counters + FEN_CTR_SHADOW_RAYS, traced, &traced_in_group);
 }

@@ -3,14 +3,16 @@
  * Work-item i, slot i: a miss ends the path (or its branch); a surface is shaded by shade_path(),
  * which may write a camera connection for connect.cl. Writes paths[i], splits[i] while branches of
  * a split wait, and connections[i] (pixel FEN_INVALID_ID when there is none). Atomics: the alive
- * counter (per work-group), the max-depth counter.
+ * counter (per work-group), the max-depth counter. The guide's tables (lib/guide.h) are read at
+ * first diffuse vertices when guide_params->slots > 0.
  */
 #include "lib/group_count.h"
 #include "lib/shade_path.h"
 
 /* Shades slot i; returns 1 if its path goes on. A branch of a split path that ends hands its slot
    to the next branch (lib/shade_path.h next_branch). */
-static inline uint shade_one(uint i, global const RenderParams* params, global PathState* paths,
+static inline uint shade_one(uint i, global const RenderParams* params, const Guide* guide,
+                             global PathState* paths,
                              global SplitState* splits, global const SurfaceHit* hits,
                              global const uint* prim_material, global const DevMaterial* materials,
                              global const DevCamera* cam, global Connection* connections,
@@ -29,12 +31,12 @@ static inline uint shade_one(uint i, global const RenderParams* params, global P
     int alive = 0;
     if (as_uint(h.normal.w) != FEN_INVALID_ID) {
         Connection c;
-        alive = shade_path(params, &p, &h, prim_material, materials, cam, &c, &s, counters);
+        alive = shade_path(params, guide, &p, &h, prim_material, materials, cam, &c, &s, counters);
         if (as_uint(c.org.w) != FEN_INVALID_ID)
             connections[i] = c;
     }
     if (!alive)
-        alive = next_branch(params, &p, &s, prim_material, materials, counters);
+        alive = next_branch(params, guide, &p, &s, prim_material, materials, cam, counters);
     if (!alive) {
         paths[i].flags = 0;
         return 0;
@@ -48,10 +50,13 @@ static inline uint shade_one(uint i, global const RenderParams* params, global P
 kernel void shade_paths(global const RenderParams* params, global PathState* paths,
                         global SplitState* splits, global const SurfaceHit* hits,
                         global const uint* prim_material, global const DevMaterial* materials, global const DevCamera* cam,
-                        global Connection* connections, volatile global ulong* counters)
+                        global Connection* connections, global const GuideParams* guide_params,
+                        global const uint* guide_tables,
+                        volatile global ulong* counters)
 {
     local uint alive_in_group;
-    const uint alive = shade_one(get_global_id(0), params, paths, splits, hits, prim_material,
+    const Guide guide = {guide_params, guide_tables};
+    const uint alive = shade_one(get_global_id(0), params, &guide, paths, splits, hits, prim_material,
                                  materials, cam, connections, counters);
     group_count_add(counters + FEN_CTR_ALIVE, alive, &alive_in_group);
 }

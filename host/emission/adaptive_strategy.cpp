@@ -147,6 +147,8 @@ public:
         });
 
         createBuffers(scene);
+        guide_ = std::make_unique<FirstBounceGuide>(ctx_, opt_.guide, centre_, radius_m_);
+        deviceBytes_ += guide_->deviceBytes();
         if (opt_.relativeTarget) {
             filmWidth_ = in.filmWidth;
             filmHeight_ = in.filmHeight;
@@ -182,6 +184,7 @@ public:
         return w;
     }
     const cl::Buffer& cellStats() const override { return stats_; }
+    FirstBounceGuide* guide() override { return opt_.guide.enabled ? guide_.get() : nullptr; }
     double statsScale() const override { return statsScale_; }
     const cl::Buffer* statsPixelScale() const override { return opt_.relativeTarget ? &pixelScale_ : nullptr; }
 
@@ -251,6 +254,8 @@ public:
         w.u64("adaptive.passes", static_cast<std::uint64_t>(passes_));
         w.f64s("adaptive.weights", {lastBatchWeight_, learnSeconds_});
         w.f64s("adaptive.batch_weights", batchWeights_);
+        if (opt_.guide.enabled)
+            guide_->save(w);
     }
     void loadState(StateReader& r) override
     {
@@ -267,6 +272,8 @@ public:
         passPaths_ = 0;
         batchPasses_.clear();
         ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, grid_->cells().size() * FEN_CELL_PARTS * FEN_CELL_STATS_WORDS * 8);
+        if (opt_.guide.enabled)
+            guide_->load(r);
         upload();
     }
 
@@ -327,7 +334,8 @@ public:
             {"probability", {{"sun", sun}, {"disk", disk}, {"portals", 1.0 - disk}}},
             {"sun_illuminance_lux", sunY_},
             {"sky_integral_cd_m2_sr", goniogram_ ? goniogram_->integral() : 0.0},
-            {"disk_radius_m", radius_m_}};
+            {"disk_radius_m", radius_m_},
+            {"guide", guide_->report()}};
         if (portalBase_) {
             j["disk_share"] = opt_.diskShare;
             j["portal_nodes"] = planes_.set.nodes;
@@ -492,6 +500,7 @@ private:
                          grid_->cells().size());
         q.enqueueFillBuffer(stats_, cl_ulong(0), 0, FEN_CELL_PARTS * grid_->cells().size() * FEN_CELL_STATS_WORDS * 8);
         upload();
+        guide_->learn();
     }
 
     ocl::Context& ctx_;
@@ -507,6 +516,7 @@ private:
     PortalPlanes planes_;
     std::vector<double> regionArea_, realised_;
     std::unique_ptr<AdaptiveGrid> grid_;
+    std::unique_ptr<FirstBounceGuide> guide_;
     std::vector<dev::AdaptiveCell> hostCells_;
     std::vector<std::uint32_t> hostAlias_;
     dev::AdaptiveParams deviceParams_{};
@@ -555,6 +565,7 @@ void validateAdaptiveOptions(const AdaptiveOptions& o)
         throw Error(cat("--adaptive-prior ", o.priorPaths, " must be in (0, 10^9] pseudo-paths"));
     if (o.maxCells < 1 || o.maxCells > (1u << 22))
         throw Error(cat("--adaptive-max-cells ", o.maxCells, " must be in 1..4194304"));
+    validateGuideOptions(o.guide);
 }
 
 std::unique_ptr<AdaptiveStrategy> makeAdaptiveStrategy(const EmissionSettings& settings,

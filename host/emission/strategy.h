@@ -11,6 +11,8 @@
 //   - batchWeight(): what the batch just finished weighs in the image, in proportion to its
 //     expected precision (paths over variance per path): a batch drawn while the density was
 //     still being learned is noisier and weighs less (render/film.h BatchStatistics);
+//   - guide(): a strategy that also learns the first bounce (the adaptive one, DESIGN.md §3.4)
+//     returns its guide, whose buffers shade.cl and connect.cl are bound to; else nullptr;
 //   - report(): what the JSON output says about it.
 // Invariants: any sequence of passes gives unbiased images (every path's weight uses the density
 // it was drawn from); the state after a pass depends only on the seed and the path counts, never
@@ -28,6 +30,7 @@
 
 #include "cl/context.h"
 #include "emission/adaptive_grid.h"
+#include "emission/first_bounce_guide.h"
 #include "emission/portal_emission.h"
 #include "emission/source_table.h"
 #include "scene/scene.h"
@@ -62,6 +65,8 @@ struct AdaptiveOptions {
     bool relativeTarget = false;
     std::uint64_t firstPass = 1u << 16;  // paths of the first learning pass; each pass doubles
     std::uint32_t maxCells = 1u << 15;
+    // The first-bounce guide, learned on the same passes (DESIGN.md §3.4).
+    GuideOptions guide;
 };
 
 struct EmissionSettings {
@@ -114,6 +119,8 @@ public:
     // The mean luminous flux a path carries when it starts (lm): what the light --max-bounces
     // removes is reported against it.
     virtual double emittedFluxPerPath() const = 0;
+    // The first-bounce guide this strategy learns, or nullptr (the kernels then scatter unguided).
+    virtual FirstBounceGuide* guide() { return nullptr; }
     virtual nlohmann::json report() const = 0;
     // What the strategy has learned and recorded, between batches (when no statistics are on the
     // device), for a checkpoint; loadState() restores it exactly, so that a resumed render is

@@ -103,7 +103,8 @@ EmissionSettings emissionSettings(const RenderOptions& opt)
     const bool tuned = !opt.adaptiveEstimate.empty() || opt.adaptiveInitialSkyDepth >= 0 || opt.adaptiveMaxSkyDepth >= 0 || opt.adaptiveInitialDepth >= 0 || opt.adaptiveMaxDepth >= 0 ||
                        opt.adaptiveDefensive >= 0.0 || opt.adaptiveDiskShare >= 0.0 || opt.adaptiveSplit >= 0.0 ||
                        opt.adaptiveFirstPass > 0 || opt.adaptiveMaxCells > 0 || opt.adaptivePrior >= 0.0 ||
-                       !opt.adaptiveWeights.empty() || !opt.adaptiveTarget.empty();
+                       !opt.adaptiveWeights.empty() || !opt.adaptiveTarget.empty() || !opt.adaptiveGuide.empty() ||
+                       opt.adaptiveGuideShare >= 0.0 || opt.adaptiveGuideVoxels >= 0;
     if (tuned && !adaptive)
         throw Error("the --adaptive-* options apply to --method adaptive");
     if (opt.adaptiveInitialSkyDepth >= 0)
@@ -138,6 +139,14 @@ EmissionSettings emissionSettings(const RenderOptions& opt)
         a.relativeTarget = opt.adaptiveTarget == "relative";
     else if (!opt.adaptiveTarget.empty())
         throw Error(cat("--adaptive-target '", printable(opt.adaptiveTarget, 40), "': expected relative or absolute"));
+    if (opt.adaptiveGuide == "on" || opt.adaptiveGuide == "off")
+        a.guide.enabled = opt.adaptiveGuide == "on";
+    else if (!opt.adaptiveGuide.empty())
+        throw Error(cat("--adaptive-guide '", printable(opt.adaptiveGuide, 40), "': expected on or off"));
+    if (opt.adaptiveGuideShare >= 0.0)
+        a.guide.share = opt.adaptiveGuideShare;
+    if (opt.adaptiveGuideVoxels >= 0)
+        a.guide.voxelsAcross = opt.adaptiveGuideVoxels;
     if (adaptive)
         validateAdaptiveOptions(a);
     return e;

@@ -42,6 +42,9 @@ struct RenderOptions {
     double adaptivePrior = -1.0;
     std::string adaptiveWeights;    // --adaptive-weights predicted|equal
     std::string adaptiveTarget;     // --adaptive-target relative|absolute
+    std::string adaptiveGuide;      // --adaptive-guide on|off
+    double adaptiveGuideShare = -1.0;
+    int adaptiveGuideVoxels = -1;
     int bvhWidth = 0;
     int batches = 16;
     int cameraSpp = 1;

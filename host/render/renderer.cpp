@@ -211,7 +211,10 @@ struct Renderer::Impl {
                               {"prior_paths", a.priorPaths},
                               {"weigh_batches", a.weighBatches},
                               {"first_pass", a.firstPass},
-                              {"max_cells", a.maxCells}}}};
+                              {"max_cells", a.maxCells},
+                              {"guide", a.guide.enabled},
+                              {"guide_share", a.guide.share},
+                              {"guide_voxels", a.guide.voxelsAcross}}}};
     }
 
     // Where the batch loop stands; with the strategy's and the statistics' state, a checkpoint.

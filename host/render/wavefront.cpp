@@ -58,12 +58,16 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     connect_ = cl::Kernel(ctx.program("connect.cl", connectDefs), "connect_paths");
     cameraPass_ = cl::Kernel(ctx.program("camera_pass.cl", defs), "camera_pass");
     const DeviceBvh& b = scene.bvh();
+    const FirstBounceGuide* guide = strategy.guide();
+    if (!guide)
+        guide = (noGuide_ = std::make_unique<FirstBounceGuide>(ctx, GuideOptions{}, glm::dvec3(0.0), 1.0)).get();
     strategy.bindEmitArgs(emit_, 3);  // checks the arity: the strategy's arguments are the last
     if (mode == KernelMode::Fused) {
         cl_uint a = 0;
         const cl::Buffer* fusedArgs[] = {&paramsBuf_, &counters_, &b.nodes(), &b.packets(),
                                          &scene.primMaterial(), &scene.materials(), &cameraBuf_,
-                                         &film.accumulators(), &strategy.cellStats(), pixelScale};
+                                         &film.accumulators(), &strategy.cellStats(), pixelScale,
+                                         &guide->params(), &guide->tables(), &guide->stats()};
         for (const cl::Buffer* buf : fusedArgs)
             fused_.setArg(a++, *buf);
         strategy.bindEmitArgs(fused_, a);  // the strategy's arguments last; checks the arity
@@ -73,9 +77,10 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     emit_.setArg(2, paths_);
     ocl::setKernelArgs(intersect_, paths_, hits_, pool, b.nodes(), b.packets());
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
-                       cameraBuf_, connections_, counters_);
+                       cameraBuf_, connections_, guide->params(), guide->tables(), counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
-                       scene.materials(), film.accumulators(), strategy.cellStats(), *pixelScale, counters_);
+                       scene.materials(), film.accumulators(), strategy.cellStats(), *pixelScale, guide->stats(),
+                       counters_);
     ocl::setKernelArgs(cameraPass_, paramsBuf_, cameraBuf_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), sky.theta, sky.phi, sky.values, film.cameraImage(), counters_);
     warmUp();

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "cl/context.h"
@@ -72,6 +73,7 @@ private:
     std::uint64_t extensionRays_ = 0;  // of the batch so far
     cl::Buffer paramsBuf_, counters_, paths_, splits_, hits_, connections_, cameraBuf_;
     cl::Buffer noPixelScale_;  // bound when the strategy weighs no statistics by pixel
+    std::unique_ptr<FirstBounceGuide> noGuide_;  // bound (off) when the strategy has no guide
     cl::Kernel emit_, intersect_, shade_, connect_, cameraPass_, fused_;
     double buildSeconds_ = 0.0;
 };

@@ -8,7 +8,9 @@
  * cell part in c->value.w (cell_stats; otherwise a placeholder never read); a part flagged
  * FEN_PART_ESTIMATE_ONLY feeds the statistics only. With -DFEN_STATS_PIXEL_SCALE the statistics
  * see the contribution times its pixel's factor in stats_pixel_scale (the adaptive strategy's
- * relative target, DESIGN.md §3.3): steering only, never the image. Requires lib/bvh_traverse.h
+ * relative target, DESIGN.md §3.3): steering only, never the image. A connection that carries a
+ * first-bounce guide record (c->guide.x > 0) adds its luminance to that box's statistics in
+ * guide_stats (lib/guide.h), whatever the strategy. Requires lib/bvh_traverse.h
  * (FEN_BVH_WIDTH).
  */
 #ifndef FEN_CONNECT_PATH_H
@@ -16,13 +18,15 @@
 
 #include "lib/accumulate.h"
 #include "lib/bvh_traverse.h"
+#include "lib/guide.h"
 #include "lib/transmittance.h"
 
 static inline void connect_path(global const RenderParams* params, const Connection* c,
                                 global const BvhNode* nodes, global const TriPacket4* packets,
                                 global const uint* prim_material, global const DevMaterial* materials,
                                 volatile global ulong* accum, volatile global ulong* cell_stats,
-                                global const float* stats_pixel_scale, volatile global ulong* counters)
+                                global const float* stats_pixel_scale, volatile global ulong* guide_stats,
+                                volatile global ulong* counters)
 {
     const uint pixel = as_uint(c->org.w);
     const RayPre r = ray_setup(c->org.xyz, c->to_cam.xyz, 0.0f, 1.0f, FEN_BVH_WIDTH);
@@ -30,6 +34,8 @@ static inline void connect_path(global const RenderParams* params, const Connect
                                                normalize(c->to_cam.xyz));
     if (trans.x > 0.0f || trans.y > 0.0f || trans.z > 0.0f) {
         const float3 value = c->value.xyz * trans;
+        if (c->guide.x > 0.0f)
+            guide_record(guide_stats, c->guide.x, as_uint(c->guide.y), rgb_luminance(value), counters);
 #ifdef FEN_EMISSION_STATS
         const uint part = as_uint(c->value.w);
         if (!(part & FEN_PART_ESTIMATE_ONLY))

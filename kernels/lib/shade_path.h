@@ -17,10 +17,14 @@
  *    Unbiased for any k: the branches' mean estimates what one path would. Where it pays: paths of
  *    large weight, which adaptive emission draws from cells it keeps near the base density --
  *    light that must bounce outside before it can enter (docs/results/house.md);
+ *  - the first-bounce guide (guide->params->slots > 0; lib/guide.h): at its first diffuse vertex,
+ *    and for every branch of a split there, a path scatters through a box drawn from its slot's
+ *    learned table, its weight divided by the box's density; its later camera connections carry
+ *    the record that feeds the table;
  *  - a path reaching params->max_depth interactions dies (counted, with its flux: a bias that is
  *    reported; the default cap is high enough that only endless paths meet it).
- * Invariant: the result depends only on the path, its hit, its split state and its random numbers
- * (keyed by path index, branch and depth), never on which kernel or slot runs it.
+ * Invariant: the result depends only on the path, its hit, its split state, the guide's tables and
+ * its random numbers (keyed by path index, branch and depth), never on which kernel or slot runs it.
  */
 #ifndef FEN_SHADE_PATH_H
 #define FEN_SHADE_PATH_H
@@ -28,6 +32,7 @@
 #include "lib/accumulate.h"
 #include "lib/camera.h"
 #include "lib/fresnel.h"
+#include "lib/guide.h"
 #include "lib/ray_offset.h"
 #include "lib/rng.h"
 #include "lib/sampling.h"
@@ -53,6 +58,32 @@ static inline int scatter_diffuse(global const RenderParams* params, PathState* 
     return 0;
 }
 
+/* The diffuse scatter at a path's first diffuse vertex (slot: its guide slot): through a box of the
+   guide's table when there is a guide, the weight over its density, and the record for what the
+   path delivers from here on (lib/guide.h); else scatter_diffuse(). */
+static inline int scatter_first(global const RenderParams* params, const Guide* guide,
+                                global const DevCamera* cam, PathState* p, float3 albedo, float3 n,
+                                float4 u, uint slot, float3* next)
+{
+    if (guide->params->slots == 0u)
+        return scatter_diffuse(params, p, albedo, n, u, next);
+    uint key;
+    float d = 1.0f;
+    float2 sq = u.yz;
+    if (guide_learned(guide, slot)) {
+        const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_GUIDE);
+        sq = guide_sample(guide, slot, bits, &key, &d);
+    } else {
+        key = slot * FEN_GUIDE_BINS + guide_box(sq);
+    }
+    const int alive = scatter_diffuse(params, p, albedo, n, (float4)(u.x, sq.x, sq.y, u.w), next);
+    p->beta.xyz /= d;
+    const float y = rgb_luminance(p->beta.xyz);
+    p->org.w = alive && y > 0.0f ? guide->params->stats_scale * cam->up.w / (y * d) : 0.0f;
+    p->dir.w = as_float(key);
+    return alive;
+}
+
 /* After the interaction at x: the depth count, the cap on it, and the next ray. Returns alive. */
 static inline int leave_vertex(global const RenderParams* params, PathState* p, float3 x, float offset_m,
                                float3 ng, float3 next, int alive, volatile global ulong* counters)
@@ -67,15 +98,16 @@ static inline int leave_vertex(global const RenderParams* params, PathState* p, 
     }
     if (!alive)
         return 0;
-    p->org = (float4)(offset_ray_origin(x, offset_m, ng, next), 0.0f);
-    p->dir = (float4)(next, 0.0f);
+    p->org = (float4)(offset_ray_origin(x, offset_m, ng, next), p->org.w); /* w: the guide's record */
+    p->dir = (float4)(next, p->dir.w);
     return 1;
 }
 
 /* Shades path *p at hit *h (a surface, not a miss). Sets *c to the camera connection, its pixel
    FEN_INVALID_ID when there is none; may split the path (*s). Returns 1 if the path goes on, with
    its next ray in *p. */
-static inline int shade_path(global const RenderParams* params, PathState* p, const SurfaceHit* h,
+static inline int shade_path(global const RenderParams* params, const Guide* guide, PathState* p,
+                             const SurfaceHit* h,
                              global const uint* prim_material, global const DevMaterial* materials,
                              global const DevCamera* cam, Connection* c, SplitState* s,
                              volatile global ulong* counters)
@@ -116,28 +148,34 @@ static inline int shade_path(global const RenderParams* params, PathState* p, co
                     c->org = (float4)(o, as_float(pixel));
                     c->to_cam = (float4)(cam->position.xyz - o, 0.0f);
                     c->value = (float4)(value, p->beta.w); /* the emission cell */
+                    c->guide = (float4)(p->org.w, p->dir.w, 0.0f, 0.0f);
                 }
             }
         }
-        /* not the portal complement's estimate-only paths: what they measure needs no precision */
-        if (params->split_max > 1u && !(p->flags & FEN_PATH_BRANCHED) &&
-            !(as_uint(p->beta.w) & FEN_PART_ESTIMATE_ONLY)) {
+        if (p->flags & FEN_PATH_BRANCHED) {
+            alive = scatter_diffuse(params, p, albedo, n, u, &next);
+        } else {
+            /* the first diffuse vertex: where a path may split, and where the guide steers */
             p->flags |= FEN_PATH_BRANCHED;
-            const float y = rgb_luminance(p->beta.xyz);
-            const uint k = (uint)fmin(y / params->split_weight, (float)params->split_max);
-            if (k >= 2u) {
-                p->beta.xyz /= (float)k;
-                s->pos = (float4)(x, offset_m);
-                s->normal = (float4)(n, as_float(prim));
-                s->beta = (float4)(p->beta.xyz, 0.0f);
-                s->depth = p->depth;
-                s->next = 1u;
-                s->count = k;
-                s->path_hi = p->path_hi;
-                p->flags |= FEN_PATH_SPLIT;
+            const uint slot = guide->params->slots ? guide_slot(guide->params, x, n) : 0u;
+            /* not the portal complement's estimate-only paths: what they measure needs no precision */
+            if (params->split_max > 1u && !(as_uint(p->beta.w) & FEN_PART_ESTIMATE_ONLY)) {
+                const float y = rgb_luminance(p->beta.xyz);
+                const uint k = (uint)fmin(y / params->split_weight, (float)params->split_max);
+                if (k >= 2u) {
+                    p->beta.xyz /= (float)k;
+                    s->pos = (float4)(x, offset_m);
+                    s->normal = (float4)(n, as_float(prim));
+                    s->beta = (float4)(p->beta.xyz, as_float(slot));
+                    s->depth = p->depth;
+                    s->next = 1u;
+                    s->count = k;
+                    s->path_hi = p->path_hi;
+                    p->flags |= FEN_PATH_SPLIT;
+                }
             }
+            alive = scatter_first(params, guide, cam, p, albedo, n, u, slot, &next);
         }
-        alive = scatter_diffuse(params, p, albedo, n, u, &next);
     }
     return leave_vertex(params, p, x, offset_m, ng, next, alive, counters);
 }
@@ -145,8 +183,9 @@ static inline int shade_path(global const RenderParams* params, PathState* p, co
 /* When a branch of a split path ends (a miss, roulette, the cap): starts the next branch waiting in
    *s, if any -- the scatter at the split vertex with the branch's own random numbers. Returns 1
    with its first ray in *p, 0 when no branch is left to go on. */
-static inline int next_branch(global const RenderParams* params, PathState* p, SplitState* s,
-                              global const uint* prim_material, global const DevMaterial* materials,
+static inline int next_branch(global const RenderParams* params, const Guide* guide, PathState* p,
+                              SplitState* s, global const uint* prim_material,
+                              global const DevMaterial* materials, global const DevCamera* cam,
                               volatile global ulong* counters)
 {
     while (p->flags & FEN_PATH_SPLIT) {
@@ -160,7 +199,7 @@ static inline int next_branch(global const RenderParams* params, PathState* p, S
         const float3 albedo = materials[prim_material[as_uint(s->normal.w)]].albedo.xyz;
         const float4 u = rng_path(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_SCATTER);
         float3 next = n;
-        const int alive = scatter_diffuse(params, p, albedo, n, u, &next);
+        const int alive = scatter_first(params, guide, cam, p, albedo, n, u, as_uint(s->beta.w), &next);
         if (leave_vertex(params, p, x, s->pos.w, n, next, alive, counters)) {
             p->flags |= FEN_PATH_ALIVE;
             return 1;

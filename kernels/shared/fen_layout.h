@@ -10,6 +10,7 @@
 
 #include "shared/fen_bvh.h"
 #include "shared/fen_emission.h"
+#include "shared/fen_guide.h"
 #include "shared/fen_render.h"
 
 #define FEN_SHARED_LAYOUT(X) \
@@ -31,6 +32,9 @@
     X(PathState, path_lo)    \
     X(PathState, flags)      \
     X(Connection, value)     \
+    X(Connection, guide)     \
+    X(GuideParams, slots)    \
+    X(GuideParams, stats_scale) \
     X(RenderParams, sun_dir) \
     X(RenderParams, path_end) \
     X(RenderParams, seed)    \

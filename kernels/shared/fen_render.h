@@ -72,8 +72,10 @@ typedef struct {
 FEN_ASSERT_SIZE(SurfaceHit, 32);
 
 typedef struct {
-    fen_float4 org;   /* xyz: ray origin (m) */
-    fen_float4 dir;   /* xyz: unit direction of travel */
+    fen_float4 org;   /* xyz: ray origin (m); w: the first-bounce guide's factor g for what the path
+                         delivers from now on, 0 before its first diffuse vertex or without a guide */
+    fen_float4 dir;   /* xyz: unit direction of travel; w: as_uint the guide's slot and box it left
+                         that vertex through (lib/guide.h) */
     fen_float4 beta;  /* rgb: path weight (flux per path, in lm with luminance-valued channels);
                          w: as_uint emission cell the path started in (learning strategies) */
     fen_u32 path_lo;  /* path index, 64-bit: the RNG counter of the path */
@@ -104,8 +106,11 @@ typedef struct {
     fen_float4 to_cam;  /* xyz: camera position - org, the segment t in (0, 1) */
     fen_float4 value;   /* rgb: contribution to the pixel (cd/m^2 x paths) if nothing blocks it;
                            w: the path's beta.w (its emission cell) */
+    fen_float4 guide;   /* the path's first-bounce guide record (PathState org.w, dir.w): x the
+                           factor g (0: none), y as_uint slot x FEN_GUIDE_BINS + box (fen_guide.h) */
 } Connection;
-FEN_ASSERT_SIZE(Connection, 48);
+FEN_ASSERT_SIZE(Connection, 64);
+FEN_ASSERT_OFFSET(Connection, guide, 48);
 
 /* Per-batch parameters of the wavefront, in a one-element buffer (never a by-value struct
    argument). What an emission strategy needs beyond the scene lives in its own buffer

@@ -462,6 +462,13 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     expectError(run("render " + good + out + " --method adaptive --adaptive-estimate median"), 1,
                 "--adaptive-estimate");
     expectError(run("render " + good + out + " --method adaptive --adaptive-max-cells 8"), 1, "--adaptive-max-cells 8");
+    // the first-bounce guide: on or off, a share that keeps every direction drawable, a sane lattice
+    expectError(run("render " + good + out + " --adaptive-guide maybe"), 1, "--adaptive-guide 'maybe'");
+    expectError(run("render " + good + out + " --method uniform --adaptive-guide on"), 1, "--method adaptive");
+    expectError(run("render " + good + out + " --adaptive-guide on --adaptive-guide-share 0"), 1,
+                "--adaptive-guide-share 0");
+    expectError(run("render " + good + out + " --adaptive-guide on --adaptive-guide-voxels 0"), 1,
+                "--adaptive-guide-voxels 0");
     // splitting: a count of branches, a positive weight unit -- never silently the default
     expectError(run("render " + good + out + " --split 0"), 1, "--split 0");
     expectError(run("render " + good + out + " --split -1"), 1, "--split -1");

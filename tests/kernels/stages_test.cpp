@@ -9,6 +9,7 @@
 #include <random>
 
 #include "cl/launch.h"
+#include "emission/first_bounce_guide.h"
 #include "render/camera_setup.h"
 #include "render/device_scene.h"
 #include "shared/fen_render.h"
@@ -73,6 +74,7 @@ struct Stages {
         std::vector<std::uint64_t> statsZero(parts * FEN_CELL_STATS_WORDS, 0);
         cl::Buffer stats = ctx.buffer(CL_MEM_READ_WRITE, statsZero.size() * 8, "cell stats", statsZero.data());
         cl::Buffer noScale = ctx.buffer(CL_MEM_READ_ONLY, 4, "no pixel scale");
+        const FirstBounceGuide noGuide(ctx, GuideOptions{}, glm::dvec3(0.0), 1.0);  // off: the cosine
         const auto defs = ds.defines();
         auto connectDefs = defs;
         if (statsScale > 0.0f)
@@ -82,9 +84,9 @@ struct Stages {
         cl::Kernel connect(ctx.program("connect.cl", connectDefs), "connect_paths");
         ocl::setKernelArgs(isect, paths, hits, n, ds.bvh().nodes(), ds.bvh().packets());
         ocl::setKernelArgs(shade, params, paths, splits, hits, ds.primMaterial(), ds.materials(), camBuf, conns,
-                           counters);
+                           noGuide.params(), noGuide.tables(), counters);
         ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.primMaterial(),
-                           ds.materials(), accum, stats, noScale, counters);
+                           ds.materials(), accum, stats, noScale, noGuide.stats(), counters);
         ocl::launch(ctx, isect, "intersect_paths", n);
         ocl::launch(ctx, shade, "shade_paths", n);
         ocl::launch(ctx, connect, "connect_paths", n);

@@ -279,6 +279,21 @@ TEST(Analytic, SplitPathsConserveEnergy)
     }, "integrating sphere, split paths");
 }
 
+TEST(Analytic, GuidedFirstBounceConservesEnergy)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Adaptive emission with the first-bounce guide: the tables are learned on the passes (the
+    // camera sees the lower part of the sphere, so they are far from uniform), and every path's
+    // weight is divided by the density of the box it left through. The mean must not move.
+    integratingSphere(*ctx, 4u << 20, [](RenderSettings& s) {
+        s.emission.method = EmissionMethod::Adaptive;
+        s.emission.adaptive.firstPass = 1u << 16;
+        s.emission.adaptive.guide.enabled = true;
+        s.emission.adaptive.guide.minConnections = 8.0;
+        s.emission.adaptive.guide.minGain = 1.0;  // every slot with enough seen: the weights at work
+    }, "integrating sphere, guided first bounce");
+}
+
 TEST(Analytic, SkySeenDirectlyAndThroughGlass)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);

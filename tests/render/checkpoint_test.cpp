@@ -23,6 +23,7 @@ struct Case {
     const char* scene;
     EmissionMethod method;
     EmissionMethod base;
+    bool guide = false;
 };
 
 RenderResult renderCase(ocl::Context& ctx, const Case& c, const std::string& checkpoint, const std::string& resume,
@@ -34,6 +35,9 @@ RenderResult renderCase(ocl::Context& ctx, const Case& c, const std::string& che
     s.emission.method = c.method;
     s.emission.adaptive.base = c.base;
     s.emission.adaptive.firstPass = 1u << 14;  // several passes, so the grid learns across batches
+    s.emission.adaptive.guide.enabled = c.guide;
+    s.emission.adaptive.guide.minConnections = 4.0;
+    s.emission.adaptive.guide.minGain = 1.0;  // tables in use wherever anything was seen
     s.paths = 1u << 20;
     s.seed = seed;
     s.rois = {Roi{8, 8, 40, 28}};
@@ -98,7 +102,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"uniform", "room.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform},
                       Case{"portal", "room.gltf", EmissionMethod::Portal, EmissionMethod::Uniform},
                       Case{"adaptive", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform},
-                      Case{"adaptive_portal", "inner_room.gltf", EmissionMethod::Adaptive, EmissionMethod::Portal}),
+                      Case{"adaptive_portal", "inner_room.gltf", EmissionMethod::Adaptive, EmissionMethod::Portal},
+                      Case{"adaptive_guide", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 TEST(Checkpoint, AnotherRenderIsRefused)

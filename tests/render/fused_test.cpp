@@ -1,7 +1,8 @@
 // fused_test.cpp — the fused kernel (lib/fused_kernel.h) and the wavefront stages give
 // bit-identical renders for the same seed: image, per-batch statistics, counters and, for the
 // adaptive strategy, the learned grid -- for every strategy, with glass in the scene, with
-// Russian roulette from the first interaction or later, with paths split at their first hit. So the faster of the two can never be
+// Russian roulette from the first interaction or later, with paths split at their first hit, with
+// the first bounce guided. So the faster of the two can never be
 // the wrong one.
 #include <gtest/gtest.h>
 
@@ -23,6 +24,7 @@ struct Case {
     int rouletteDepth;
     int splitMax = 1;
     double splitWeight = 1.0;
+    bool guide = false;
 };
 
 RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
@@ -39,6 +41,9 @@ RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
     s.rouletteDepth = c.rouletteDepth;
     s.splitMax = c.splitMax;
     s.splitWeight = c.splitWeight;
+    s.emission.adaptive.guide.enabled = c.guide;
+    s.emission.adaptive.guide.minConnections = 4.0;
+    s.emission.adaptive.guide.minGain = 1.0;  // tables in use wherever anything was seen
     s.rois = {Roi{0, 0, 48, 36}};
     Renderer r(ctx, scene, sky, scene.cameras.at(0), 48, 36, s);
     return r.render();
@@ -65,6 +70,10 @@ TEST_P(FusedKernel, BitIdenticalToTheWavefront)
     EXPECT_EQ(f.counts.badContributions, 0u);
     EXPECT_EQ(w.emission.value("checksum", 0ull), f.emission.value("checksum", 0ull));
     EXPECT_EQ(w.emission.value("cells", 0), f.emission.value("cells", 0));
+    if (c.guide) {
+        EXPECT_EQ(w.emission["guide"], f.emission["guide"]);
+        EXPECT_GT(f.emission["guide"].value("learned_slots", 0), 0) << "the guide learned nothing";
+    }
     double sum = 0.0;
     for (float v : f.image.rgb)
         sum += v;
@@ -81,7 +90,10 @@ INSTANTIATE_TEST_SUITE_P(
                       // splitting: the branches' slot hand-over in the wavefront against the fused loop
                       Case{"adaptive_split", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, 3, 16},
                       Case{"uniform_split_all", "bay_window.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform, 1, 5,
-                           0.01}),
+                           0.01},
+                      // the first-bounce guide, also on every branch of a split path
+                      Case{"adaptive_guide_split", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, 3,
+                           16, 1.0, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace

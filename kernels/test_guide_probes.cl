@@ -1,0 +1,27 @@
+/* test_guide_probes.cl — the first-bounce guide's device half (lib/guide.h) exposed to
+ * tests/kernels/guide_sampling_test.cpp. Not used by rendering.
+ */
+#include "lib/guide.h"
+
+/* n draws from (learned) slot `slot`'s table: out[i] = (u1, u2, d(b), as_float(key)). */
+kernel void guide_sample_probe(global const GuideParams* guide_params, global const uint* guide_tables,
+                               uint slot, uint seed, uint n, global float4* out)
+{
+    const uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    const Guide g = {guide_params, guide_tables};
+    uint key;
+    float d;
+    const float2 sq = guide_sample(&g, slot, rng_bits(seed, 0u, i, 0u, 0u, FEN_RNG_GUIDE), &key, &d);
+    out[i] = (float4)(sq, d, as_float(key));
+}
+
+/* The slot of vertex i at x[i] with normal n[i]. */
+kernel void guide_slot_probe(global const GuideParams* guide_params, global const float4* x,
+                             global const float4* n, uint count, global uint* slot)
+{
+    const uint i = get_global_id(0);
+    if (i < count)
+        slot[i] = guide_slot(guide_params, x[i].xyz, n[i].xyz);
+}
