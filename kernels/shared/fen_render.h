@@ -92,7 +92,7 @@ FEN_ASSERT_OFFSET(PathState, path_lo, 48);
 typedef struct {
     fen_float4 pos;     /* xyz: the vertex (m); w: how far a ray leaving it must start off the surface */
     fen_float4 normal;  /* xyz: unit normal on the side the light arrived at; w: as_uint primitive */
-    fen_float4 beta;    /* rgb: each branch's weight on arrival; w: unused */
+    fen_float4 beta;    /* rgb: each branch's weight on arrival; w: as_uint the vertex's guide slot */
     fen_u32 depth;      /* interactions before the vertex */
     fen_u32 next;       /* the next branch to start */
     fen_u32 count;      /* branches in all */
