@@ -141,7 +141,7 @@ int main(int argc, char** argv)
     renderCmd->add_option("--adaptive-guide-share", render.adaptiveGuideShare,
                           "With adaptive --adaptive-guide on: the uniform share kept in every learned bounce table (default 0.25)");
     renderCmd->add_option("--adaptive-guide-voxels", render.adaptiveGuideVoxels,
-                          "With adaptive --adaptive-guide on: guide voxels across the scene's bounding radius (default 32)");
+                          "With adaptive --adaptive-guide on: guide voxels across the scene's bounding radius (default 4)");
     renderCmd->add_option("--adaptive-target", render.adaptiveTarget,
                           "With adaptive: minimise the absolute (default) or the relative squared error per pixel");
     renderCmd->add_option("--adaptive-max-cells", render.adaptiveMaxCells,

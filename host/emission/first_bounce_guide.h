@@ -42,7 +42,10 @@ struct GuideOptions {
     double share = 0.25;              // the uniform table's share in every learned one
     double minConnections = 32.0;     // contributions a slot needs before it is learned
     double minGain = 2.0;             // ... and the second-moment cut its table must promise
-    int voxelsAcross = 32;            // lattice: voxels across the scene's bounding sphere's radius
+    // Lattice: voxels across the scene's bounding sphere's radius. Coarse on purpose: a slot must
+    // gather contributions before it is steered, and far from the camera they are rare (R/4 beat
+    // R/32 on all six measured scenes: docs/results/guide.md).
+    int voxelsAcross = 4;
     std::uint32_t slots = 1u << 13;   // hash slots (a power of 2)
 };
 // Throws a one-line error naming the option for a value out of range.
