@@ -17,12 +17,12 @@
 #include "trace/device_bvh.h"
 #include "io/state_io.h"
 #include "util/error.h"
+#include "util/fixed_point.h"
 
 namespace fen {
 
 namespace {
 
-constexpr double kTwo64 = 18446744073709551616.0;
 // Statistics hold round(Y^2 * 2^32 / ref^2), 128-bit: contributions down to ~1e-5 of the
 // reference luminance still register, and 2^95 ref^2 fits before overflowing (lib/accumulate.h).
 constexpr int kStatsFixedPointBits = 32;
@@ -184,7 +184,7 @@ public:
         return w;
     }
     const cl::Buffer& cellStats() const override { return stats_; }
-    FirstBounceGuide* guide() override { return opt_.guide.enabled ? guide_.get() : nullptr; }
+    FirstBounceGuide* guide() override { return guide_.get(); }  // off: slots 0, placeholders
     double statsScale() const override { return statsScale_; }
     const cl::Buffer* statsPixelScale() const override { return opt_.relativeTarget ? &pixelScale_ : nullptr; }
 
@@ -474,14 +474,11 @@ private:
         const auto& cells = grid_->cells();
         for (std::size_t i = 0; i < n; ++i) {
             const std::uint64_t* w = raw.data() + FEN_CELL_STATS_WORDS * i;
-            const auto word128 = [w](int lo) {
-                return static_cast<double>(w[lo + 1]) * kTwo64 + static_cast<double>(w[lo]);
-            };
             // Lambda = Y P(cell) / P_base(cell): the contribution had the base density emitted it.
             const std::size_t cell = i / FEN_CELL_PARTS;
             const double toBase = realised_[cell] / cells[cell].base;
-            parts[i].sum = word128(FEN_CELL_SUM_LO) / fixedScale_ * toBase;
-            parts[i].sumSq = word128(FEN_CELL_SUMSQ_LO) / statsScale_ * toBase * toBase;
+            parts[i].sum = fixed128(w + FEN_CELL_SUM_LO) / fixedScale_ * toBase;
+            parts[i].sumSq = fixed128(w + FEN_CELL_SUMSQ_LO) / statsScale_ * toBase * toBase;
             // Paths are not counted on the device: the expectation, exact in the mean
             // (shared/fen_emission.h).
             parts[i].paths = static_cast<double>(passPaths_) * realised_[cell] / FEN_CELL_PARTS;

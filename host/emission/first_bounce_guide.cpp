@@ -4,16 +4,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 
 #include "emission/source_table.h"
 #include "io/state_io.h"
 #include "util/error.h"
+#include "util/fixed_point.h"
 
 namespace fen {
 
 namespace {
 
-constexpr double kTwo64 = 18446744073709551616.0;
 // The device scales v by 2^20 and sums v^2 in 128-bit fixed point: v (what a unit of weight
 // delivers, in units of a pixel's solid angle) between about 1e-6 and 1e13 registers and fits.
 constexpr int kStatsFixedPointBits = 20;
@@ -133,12 +134,9 @@ void FirstBounceGuide::learn()
     for (std::size_t i = 0; i < sumSq_.size(); ++i) {
         const std::uint64_t* w = raw.data() + FEN_GUIDE_STATS_WORDS * i;
         // v^2 d(b), d the density the pass drew the box with: an estimate of the box's S(b).
-        const double v2 = static_cast<double>(w[FEN_GUIDE_SUMSQ_HI]) * kTwo64 + static_cast<double>(w[FEN_GUIDE_SUMSQ_LO]);
-        sumSq_[i] += v2 * scale * densityHost_[i];
+        sumSq_[i] += fixed128(w + FEN_GUIDE_SUMSQ_LO) * scale * densityHost_[i];
         connections_[i] += static_cast<double>(w[FEN_GUIDE_CONNECTIONS]);
-        totalConnections_ += static_cast<double>(w[FEN_GUIDE_CONNECTIONS]);
     }
-    ++passes_;
     rebuild();
     upload();
     clearStats();
@@ -163,7 +161,6 @@ void FirstBounceGuide::save(StateWriter& w) const
             seen.push_back(connections_[i]);
         }
     w.f64s("guide.boxes", seen);
-    w.f64s("guide.totals", {totalConnections_, static_cast<double>(passes_)});
 }
 
 void FirstBounceGuide::load(StateReader& r)
@@ -180,9 +177,6 @@ void FirstBounceGuide::load(StateReader& r)
         sumSq_[static_cast<std::size_t>(i)] = seen[k + 1];
         connections_[static_cast<std::size_t>(i)] = seen[k + 2];
     }
-    const std::vector<double> t = r.f64s("guide.totals", 2, true);
-    totalConnections_ = t[0];
-    passes_ = static_cast<int>(t[1]);
     rebuild();
     upload();
     clearStats();
@@ -200,7 +194,7 @@ nlohmann::json FirstBounceGuide::report() const
             {"min_gain", opt_.minGain},
             {"candidate_slots", candidateSlots_},
             {"learned_slots", learnedSlots_},
-            {"connections", totalConnections_},
+            {"connections", std::accumulate(connections_.begin(), connections_.end(), 0.0)},
             {"memory_bytes", deviceBytes_}};
 }
 

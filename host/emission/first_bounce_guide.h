@@ -83,8 +83,6 @@ private:
     std::vector<std::uint32_t> tablesHost_;         // the learned bitmap, then the columns (fen_guide.h)
     std::vector<float> densityHost_;                // per slot x box: d(b)
     std::uint32_t learnedSlots_ = 0, candidateSlots_ = 0;  // guided; with enough contributions
-    double totalConnections_ = 0.0;
-    int passes_ = 0;
     cl::Buffer params_, tables_, stats_;
     std::size_t deviceBytes_ = 0;
 };

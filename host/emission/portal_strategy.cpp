@@ -8,6 +8,7 @@
 #include "trace/device_bvh.h"
 #include "io/state_io.h"
 #include "util/error.h"
+#include "util/fixed_point.h"
 
 namespace fen {
 
@@ -96,8 +97,7 @@ public:
         q.enqueueReadBuffer(stats_, CL_TRUE, 0, sizeof w, w);
         double sum[2];
         for (int k = 0; k < 2; ++k)
-            sum[k] = (static_cast<double>(w[FEN_CELL_STATS_WORDS * k + FEN_CELL_SUM_HI]) * 18446744073709551616.0 +
-                      static_cast<double>(w[FEN_CELL_STATS_WORDS * k + FEN_CELL_SUM_LO])) / fixedScale_;
+            sum[k] = fixed128(w + FEN_CELL_STATS_WORDS * k + FEN_CELL_SUM_LO) / fixedScale_;
         unreached_.push_back(sum[0] + sum[1] > 0.0 ? sum[1] / (sum[0] + sum[1]) : 0.0);
         q.enqueueFillBuffer(stats_, cl_ulong(0), 0, 2 * FEN_CELL_STATS_WORDS * 8);
     }

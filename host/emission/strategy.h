@@ -11,8 +11,9 @@
 //   - batchWeight(): what the batch just finished weighs in the image, in proportion to its
 //     expected precision (paths over variance per path): a batch drawn while the density was
 //     still being learned is noisier and weighs less (render/film.h BatchStatistics);
-//   - guide(): a strategy that also learns the first bounce (the adaptive one, DESIGN.md §3.4)
-//     returns its guide, whose buffers shade.cl and connect.cl are bound to; else nullptr;
+//   - guide(): a strategy that can learn the first bounce (the adaptive one, DESIGN.md §3.4)
+//     returns its guide, whose buffers shade.cl and connect.cl are bound to (switched off, it
+//     binds as placeholders); else nullptr;
 //   - report(): what the JSON output says about it.
 // Invariants: any sequence of passes gives unbiased images (every path's weight uses the density
 // it was drawn from); the state after a pass depends only on the seed and the path counts, never
@@ -119,7 +120,8 @@ public:
     // The mean luminous flux a path carries when it starts (lm): what the light --max-bounces
     // removes is reported against it.
     virtual double emittedFluxPerPath() const = 0;
-    // The first-bounce guide this strategy learns, or nullptr (the kernels then scatter unguided).
+    // The first-bounce guide this strategy owns (perhaps off), or nullptr: the kernels then scatter
+    // unguided.
     virtual FirstBounceGuide* guide() { return nullptr; }
     virtual nlohmann::json report() const = 0;
     // What the strategy has learned and recorded, between batches (when no statistics are on the

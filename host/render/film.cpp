@@ -5,14 +5,9 @@
 #include <cmath>
 
 #include "io/state_io.h"
+#include "util/fixed_point.h"
 
 namespace fen {
-
-namespace {
-
-constexpr double kTwo64 = 18446744073709551616.0;
-
-}  // namespace
 
 Film::Film(ocl::Context& ctx, int width, int height, double referenceLuminance_cd_m2)
     : ctx_(ctx), width_(width), height_(height),
@@ -39,10 +34,7 @@ std::vector<double> Film::read(std::uint64_t paths)
     const double toValue = 1.0 / (static_cast<double>(fixedScale_) * static_cast<double>(paths));
     for (std::size_t p = 0; p < px; ++p)
         for (int c = 0; c < 3; ++c)
-            img[3 * p + c] = (static_cast<double>(acc[kWordsPerPixel * p + 2 * c + 1]) * kTwo64 +
-                              static_cast<double>(acc[kWordsPerPixel * p + 2 * c])) *
-                                 toValue +
-                             cam[4 * p + c];
+            img[3 * p + c] = fixed128(acc.data() + kWordsPerPixel * p + 2 * c) * toValue + cam[4 * p + c];
     return img;
 }
 

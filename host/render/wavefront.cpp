@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "cl/launch.h"
+#include "util/fixed_point.h"
 
 namespace fen {
 
@@ -195,9 +196,7 @@ void Wavefront::endBatch(std::uint32_t batch, BatchCounts& counts)
     counts.statsOverflows += ctr[FEN_CTR_STATS_OVERFLOWS];
     counts.maxBounceCuts += ctr[FEN_CTR_MAX_DEPTH];
     counts.cameraGlassCuts += ctr[FEN_CTR_CAMERA_GLASS_CUT];
-    counts.cutFlux += (static_cast<double>(ctr[FEN_CTR_CUT_FLUX_HI]) * 18446744073709551616.0 +
-                       static_cast<double>(ctr[FEN_CTR_CUT_FLUX_LO])) /
-                      static_cast<double>(params_.fixed_scale);
+    counts.cutFlux += fixed128(ctr + FEN_CTR_CUT_FLUX_LO) / static_cast<double>(params_.fixed_scale);
 }
 
 }  // namespace fen
