@@ -18,6 +18,7 @@ int runDevices(bool json)
         for (const auto& d : devices)
             j.push_back({{"index", d.index},
                          {"platform", d.platformName},
+                         {"platform_version", d.platformVersion},
                          {"device", d.deviceName},
                          {"type", d.typeName()},
                          {"vendor", d.vendor},
@@ -28,6 +29,7 @@ int runDevices(bool json)
                          {"global_mem_bytes", d.globalMemBytes},
                          {"max_alloc_bytes", d.maxAllocBytes},
                          {"int64_atomics", d.int64Atomics},
+                         {"correctly_rounded_divide_sqrt", d.correctlyRoundedDivSqrt},
                          {"default", d.index == def}});
         std::cout << j.dump(2) << "\n";
         return 0;

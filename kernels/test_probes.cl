@@ -126,3 +126,14 @@ kernel void cdf_probe_at(global const uint* alias, uint shift,
     if (i < n)
         out[i] = alias_pick(alias, shift, r[i]);
 }
+
+/* out[2i] = a[i] / b[i], out[2i+1] = sqrt(a[i]): the arithmetic the triangle test and the
+   samplers rely on, to compare bit for bit with the host's IEEE 754 results. */
+kernel void divsqrt_probe(global const float* a, global const float* b, global float* out, uint n)
+{
+    const uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    out[2 * i] = a[i] / b[i];
+    out[2 * i + 1] = sqrt(a[i]);
+}

@@ -1,6 +1,8 @@
 // context.cpp — context/queue creation, program building with full diagnostics, launch timing.
 #include "cl/context.h"
 
+#include <cstdlib>
+
 #include "cl/cl_error.h"
 #include "cl/kernel_source.h"
 #include "util/error.h"
@@ -43,6 +45,13 @@ std::string baseBuildOptions() { return "-cl-std=CL1.2"; }
 
 Context::Context(const DeviceInfo& info) : info_(info)
 {
+    if (const char* env = std::getenv("FEN_LOCAL_SIZE"); env && *env) {
+        char* end = nullptr;
+        const unsigned long v = std::strtoul(env, &end, 10);
+        if (*end != '\0' || v == 0 || v > 1024 || (v & (v - 1)) != 0)
+            throw Error(cat("FEN_LOCAL_SIZE '", printable(env, 20), "': expected a power of two from 1 to 1024"));
+        localSize_ = v;
+    }
     try {
         context_ = cl::Context(info_.device);
         queue_ = cl::CommandQueue(context_, info_.device, CL_QUEUE_PROFILING_ENABLE);
@@ -54,6 +63,12 @@ Context::Context(const DeviceInfo& info) : info_(info)
 cl::Program Context::program(const std::string& mainFile, const std::vector<std::string>& defines)
 {
     std::string options = baseBuildOptions();
+    // OpenCL lets float division and sqrt be off by 2.5-3 ulp unless asked otherwise, and
+    // NVIDIA's driver is: its triangle hits then differ from the CPU reference in the last bits
+    // of t, u and v (measured, docs/results/gpu.md), and a ray through a shared edge can pick
+    // the other neighbour. Asked for, both round as IEEE 754 does, on every device that can.
+    if (info_.correctlyRoundedDivSqrt)
+        options += " -cl-fp32-correctly-rounded-divide-sqrt";
     for (const auto& d : defines)
         options += " -D" + d;
     const std::string key = mainFile + "|" + options;

@@ -45,6 +45,9 @@ public:
     const cl::Device& device() const { return info_.device; }
     cl::CommandQueue& queue() { return queue_; }
     KernelStats& stats() { return stats_; }
+    // Work-items per work-group of a launch that names none: 64, or FEN_LOCAL_SIZE (a power of
+    // two up to 1024, for measuring another size on a device; README "Environment").
+    std::size_t localSize() const { return localSize_; }
 
     // kernels/<mainFile> built with `-D` definitions (e.g. "FEN_BVH_WIDTH=8"); built once per
     // (file, definitions) in this process.
@@ -64,6 +67,7 @@ private:
     KernelStats stats_;
     std::map<std::string, cl::Program> programs_;
     double buildSeconds_ = 0.0;
+    std::size_t localSize_ = 64;
 };
 
 // The options every program is built with, before the definitions.

@@ -58,6 +58,8 @@ std::string DeviceInfo::typeName() const
 
 std::string DeviceInfo::label() const { return platformName + " / " + deviceName; }
 
+std::string DeviceInfo::matchText() const { return label() + " (" + platformVersion + ")"; }
+
 std::vector<DeviceInfo> listDevices()
 {
     std::vector<cl::Platform> platforms;
@@ -85,6 +87,7 @@ std::vector<DeviceInfo> listDevices()
             info.platform = p;
             info.device = d;
             info.platformName = trimmed(p.getInfo<CL_PLATFORM_NAME>());
+            info.platformVersion = trimmed(p.getInfo<CL_PLATFORM_VERSION>());
             info.deviceName = trimmed(d.getInfo<CL_DEVICE_NAME>());
             info.vendor = trimmed(d.getInfo<CL_DEVICE_VENDOR>());
             info.deviceVersion = trimmed(d.getInfo<CL_DEVICE_VERSION>());
@@ -96,6 +99,8 @@ std::vector<DeviceInfo> listDevices()
             info.maxAllocBytes = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
             const std::string ext = d.getInfo<CL_DEVICE_EXTENSIONS>();
             info.int64Atomics = ext.find("cl_khr_int64_base_atomics") != std::string::npos;
+            info.correctlyRoundedDivSqrt =
+                (d.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
             out.push_back(std::move(info));
         }
     }
@@ -137,7 +142,7 @@ DeviceInfo selectDevice(const std::string& specIn)
     }
     const std::string needle = lower(spec);
     for (const auto& d : devices)
-        if (lower(d.label()).find(needle) != std::string::npos)
+        if (lower(d.matchText()).find(needle) != std::string::npos)
             return d;
     throw Error(cat("no OpenCL device matches ", origin, " '", spec, "'; available: ",
                     availableList(devices)));

@@ -1,7 +1,8 @@
 // device.h — finding OpenCL devices and choosing one.
 //
 // Devices are numbered across all platforms in enumeration order; `--device` takes that number
-// or a case-insensitive substring of "platform / device name"; with none given, the
+// or a case-insensitive substring of "platform / device name (platform version)", so that
+// `pocl` finds "Portable Computing Language" by its version string; with none given, the
 // FEN_CL_DEVICE environment variable is used, else the first GPU, else the first CPU device.
 #pragma once
 
@@ -17,6 +18,7 @@ struct DeviceInfo {
     cl::Platform platform;
     cl::Device device;
     std::string platformName;
+    std::string platformVersion;  // "OpenCL 3.0 PoCL 3.1 ...", "OpenCL 3.0 CUDA 13.0.88"
     std::string deviceName;
     std::string vendor;
     std::string deviceVersion;
@@ -27,11 +29,15 @@ struct DeviceInfo {
     cl_ulong globalMemBytes = 0;
     cl_ulong maxAllocBytes = 0;
     bool int64Atomics = false;
+    // CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT: float / and sqrt can be asked to round as IEEE 754
+    // does (Context::program asks), so kernels compute what the CPU references compute.
+    bool correctlyRoundedDivSqrt = false;
 
     bool isGpu() const { return (type & CL_DEVICE_TYPE_GPU) != 0; }
     bool isCpu() const { return (type & CL_DEVICE_TYPE_CPU) != 0; }
     std::string typeName() const;
     std::string label() const;  // "platform / device"
+    std::string matchText() const;  // what --device substrings are matched against
 };
 
 // All devices of all platforms. Throws fen::Error when there is no OpenCL platform at all.

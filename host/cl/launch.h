@@ -38,11 +38,13 @@ void setKernelArgs(cl::Kernel& kernel, Args&&... args)
 }
 
 inline cl::Event launch(Context& ctx, const cl::Kernel& kernel, const std::string& name,
-                        std::size_t n, std::size_t local = 64)
+                        std::size_t n, std::size_t local = 0)
 {
     cl::Event done;
     if (n == 0)
         return done;
+    if (local == 0)
+        local = ctx.localSize();
     const std::size_t global = (n + local - 1) / local * local;
     ctx.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local),
                                      nullptr, &done);
