@@ -232,10 +232,19 @@ TEST(CliRender, ACheckpointResumesBitIdentically)
 {
     // A render stopped by SIGTERM saves a checkpoint; --resume finishes it, and the EXR is the
     // byte-for-byte EXR of the render that was never stopped. A checkpoint of another render is
-    // refused in one line.
+    // refused in one line. The stop comes 1 s in, so the render must last several seconds on
+    // any device: 2^24 paths do on PoCL, a GPU needs hundreds of times more (measured first).
     const std::string dir = test::tempDir("cli-render-checkpoint");
     const std::string scene = plateScene().write(dir + "/plate.gltf");
-    const std::string args = " --paths 16777216 --batches 256 --width 40 --seed 5 --no-progress";
+    const CliRun probe = run("render " + scene + " --out " + dir + "/probe.exr --paths 4194304 --batches 16 "
+                             "--width 40 --no-progress");
+    ASSERT_EQ(probe.status, 0) << probe.err;
+    const double pathsPerSecond = nlohmann::json::parse(slurp(dir + "/probe.json"))["paths_per_second"];
+    std::uint64_t paths = 1u << 24;
+    while (paths < 4.0 * pathsPerSecond)
+        paths *= 2;
+    const std::string args = " --paths " + std::to_string(paths) +
+                             " --batches 256 --width 40 --seed 5 --no-progress";
     ASSERT_EQ(run("render " + scene + " --out " + dir + "/whole.exr" + args).status, 0);
     const std::string cmd = std::string(FENESTRA_BIN) + " render " + scene + " --out " + dir + "/r.exr" + args +
                             " --checkpoint " + dir + "/c.ckpt 2>" + dir + "/err & pid=$!; sleep 1; kill -TERM $pid; "
