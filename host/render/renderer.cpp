@@ -59,10 +59,7 @@ struct Renderer::Impl {
           skyTables(makeSkyTables(g)), sky(c, skyTables),
           film(c, w, h, referenceLuminance(s, skyTables)),
           strategy(makeEmissionStrategy(st.emission, {c, s, skyTables, g, sky, scene.bvh().width(), film.fixedScale(), film.width(), film.height()})),
-          // CPU: a pool whose path states, hits and connections (144 B a slot) fit in the
-          // last-level cache -- every stage streams through all of it (measured on the default
-          // room: 2^16 slots 2.7 s, 2^19 slots 3.6 s). GPU: enough slots to fill the device.
-          pool(st.poolSize > 0 ? st.poolSize : (c.info().isGpu() ? (1u << 21) : (1u << 16)))
+          pool(st.poolSize > 0 ? st.poolSize : defaultPoolSlots(c.info()))
     {
         camera = cam;
         if (!st.checkpointPath.empty() || !st.resumePath.empty())

@@ -22,6 +22,19 @@ std::string kernelModeName(KernelMode m) { return m == KernelMode::Fused ? "fuse
 
 KernelMode defaultKernelMode(bool gpu) { return gpu ? KernelMode::Wavefront : KernelMode::Fused; }
 
+std::uint32_t defaultPoolSlots(const ocl::DeviceInfo& device)
+{
+    if (!device.isGpu())
+        return 1u << 16;
+    const std::uint64_t slotBytes = sizeof(dev::PathState) + sizeof(dev::SurfaceHit) +
+                                    sizeof(dev::SplitState) + sizeof(dev::Connection);
+    std::uint32_t slots = 1u << 21;
+    while (slots > (1u << 16) && (slots * slotBytes > device.globalMemBytes / 4 ||
+                                  slots * sizeof(dev::Connection) > device.maxAllocBytes))
+        slots /= 2;
+    return slots;
+}
+
 Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy,
                      Film& film, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
                      KernelMode mode)

@@ -29,6 +29,12 @@ KernelMode parseKernelMode(const std::string& s);  // wavefront | fused
 std::string kernelModeName(KernelMode m);
 // The default: fused on a CPU, the wavefront on a GPU (measured: README "Kernels").
 KernelMode defaultKernelMode(bool gpu);
+// Path slots when --pool is not given. CPU: 2^16, whose path states, hits and connections fit in
+// the last-level cache -- every stage streams through all of them (measured on the default
+// room: 2^16 slots 2.7 s, 2^19 slots 3.6 s). GPU: 2^21, halved until the slots take at most a
+// quarter of the device's memory. On an H200 (docs/results/gpu.md) 2^22 gave uniform 4.5 % more
+// paths/s but adaptive 20-23 % fewer, so the default stays where both were measured well.
+std::uint32_t defaultPoolSlots(const ocl::DeviceInfo& device);
 
 // What a batch's counters say (summed over the iterations of the batch).
 struct BatchCounts {
