@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# gpu_measure.sh OUTDIR [DEVICE] — the GPU measurements of docs/results/gpu.md, as one script.
+# Expects built binaries (scripts/setup.sh): build/fenestra (Release). Writes into OUTDIR:
+#   devices.txt        fenestra devices
+#   bench_room.json    traversal, procedural room (110k triangles), every BVH layout, vs Embree
+#   bench_spheres.json traversal, spheres (1.09M triangles), every BVH layout, vs Embree
+#   render_bench.txt   bench --render: render rays/s over closest-hit traversal, uniform and portal
+#   sweep.txt          pool size, BVH layout and kernel mode for a render of scenes/room.gltf
+# Every step has its own time limit, so one that hangs or fails leaves the rest measured.
+set -u
+out=${1:?usage: gpu_measure.sh OUTDIR [DEVICE]}
+dev=${2:-nvidia}
+mkdir -p "$out"
+fen=${FEN_BIN:-build/fenestra}
+step() { local limit=$1; shift; echo "+ $*" >&2; timeout "$limit" "$@"; echo "exit $?" >&2; }
+
+step 20 "$fen" devices > "$out/devices.txt" 2>&1
+step 60 "$fen" bench --device "$dev" --layout all --rays 16777216 --runs 5 --json \
+    > "$out/bench_room.json" 2> "$out/bench_room.err"
+step 100 "$fen" bench spheres --device "$dev" --layout all --rays 16777216 --runs 3 --json \
+    > "$out/bench_spheres.json" 2> "$out/bench_spheres.err"
+{
+    for args in "room --render-method uniform" "scenes/room.gltf --render-method uniform" \
+                "scenes/room.gltf --render-method portal" "scenes/inner_room.gltf --render-method uniform" \
+                "scenes/inner_room.gltf --render-method portal"; do
+        echo "== bench $args"
+        # shellcheck disable=SC2086
+        step 45 "$fen" bench $args --device "$dev" --no-embree --render --render-time 5 --runs 3 \
+            --rays 16777216 2>&1 | grep -v '^\s*$'
+    done
+} > "$out/render_bench.txt" 2>&1
+{
+    run() {
+        local name=$1; shift
+        echo "== $name: $*"
+        step 30 "$fen" render scenes/room.gltf --out "$out/sweep_tmp.exr" --time 5 --device "$dev" \
+            --no-progress "$@" 2>&1 | tail -3
+        python3 - "$out/sweep_tmp.json" <<'PY' || cat "$out/sweep_tmp.json"
+import json, sys
+j = json.load(open(sys.argv[1]))
+eff = 1.0 / (j["noise_std_err_cd_m2"] ** 2 * j["seconds"]["render"])
+print("    paths %d  seconds %.2f  Mrays/s %.1f  Mpaths/s %.2f  kernels %s  layout %s  mean %.1f  noise %.3g  1/(noise^2 s) %.3g"
+      % (j["paths"], j["seconds"]["render"], j["rays_per_second"] * 1e-6, j["paths_per_second"] * 1e-6,
+         j["kernel_mode"], j["bvh_layout"], j["mean_luminance_cd_m2"], j["noise_std_err_cd_m2"], eff))
+print("    kernel build s %.2f, device seconds:" % j["seconds"]["kernel_build"], {k: round(v["device_seconds"], 3) for k, v in j["kernels"].items()})
+PY
+    }
+    for p in 18 19 20 21 22 23; do run "pool 2^$p bvh2" --method uniform --pool $((1 << p)) --layout bvh2; done
+    for l in bvh4 bvh8; do run "pool 2^21 $l" --method uniform --pool $((1 << 21)) --layout $l; done
+    run "fused kernel" --method uniform --kernels fused
+    run "adaptive, the default method" --method adaptive
+    rm -f "$out"/sweep_tmp.*
+} > "$out/sweep.txt" 2>&1
