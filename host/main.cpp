@@ -137,7 +137,7 @@ int main(int argc, char** argv)
     renderCmd->add_option("--adaptive-weights", render.adaptiveWeights,
                           "With adaptive: batches weigh by predicted precision, or all alike: predicted (default) or equal");
     renderCmd->add_option("--adaptive-guide", render.adaptiveGuide,
-                          "With adaptive: also learn where the first bounce sends light to the camera, on or off (default off)");
+                          "With adaptive: also learn where the first bounce sends light to the camera, on or off (default on)");
     renderCmd->add_option("--adaptive-guide-share", render.adaptiveGuideShare,
                           "With adaptive --adaptive-guide on: the uniform share kept in every learned bounce table (default 0.25)");
     renderCmd->add_option("--adaptive-guide-voxels", render.adaptiveGuideVoxels,
