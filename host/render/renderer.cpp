@@ -11,6 +11,7 @@
 #include "render/checkpoint.h"
 #include "render/device_scene.h"
 #include "render/film.h"
+#include "shared/fen_rng.h"
 #include "trace/device_bvh.h"
 #include "util/error.h"
 
@@ -135,6 +136,18 @@ struct Renderer::Impl {
         strategy->imageEstimate(Y);
     }
 
+    // The emission table picks of paths [first, first + n), one run of the wavefront (a batch, or a
+    // learning pass within one): one sweep of a lattice over them at an offset drawn from the seed
+    // and `first` (kernels/lib/emit_source.h emission_pick_bits). Per run, not per batch: a
+    // learning strategy's pass must see every column of its table, as its statistics assume.
+    void setPickLattice(std::uint64_t first, std::uint64_t n)
+    {
+        dev::RngBlock ctr{static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(first >> 32), 0u, 6u};
+        const std::uint32_t offset = dev::fen_philox4x32_10(ctr, settings.seed, 0x1a771ceu).x;
+        const double step = std::ldexp(1.0, 32) / static_cast<double>(std::max<std::uint64_t>(n, 1));
+        wavefront->setPickLattice(offset, static_cast<std::uint32_t>(std::clamp(std::round(step), 1.0, 4294967295.0)));
+    }
+
     // Runs paths [base, base + count) as one batch, in the strategy's passes, and returns its
     // image (rgb per pixel). `stats`: the counted batches so far (none while calibrating).
     std::vector<double> runBatch(std::uint64_t base, std::uint64_t count, std::uint32_t batch,
@@ -150,6 +163,7 @@ struct Renderer::Impl {
         std::uint64_t done = 0;
         while (done < count) {
             const std::uint64_t n = std::min(count - done, std::max<std::uint64_t>(1, strategy->passLimit()));
+            setPickLattice(base + done, n);
             wavefront->run(base + done, n, counts, onIteration);
             done += n;
             strategy->afterPaths(n, done == count);

@@ -56,6 +56,13 @@ public:
 
     // Uploads the parameters for what follows (path_end is set per run).
     void setParams(const dev::RenderParams& params) { params_ = params; }
+    // The lattice the emission table picks follow in the paths from here on (RenderParams
+    // pick_offset, pick_step; kernels/lib/emit_source.h).
+    void setPickLattice(std::uint32_t offset, std::uint32_t step)
+    {
+        params_.pick_offset = offset;
+        params_.pick_step = step;
+    }
     // Zeroes the counters: a batch starts.
     void beginBatch();
     // Runs paths [base, base + count) to the end. `progress(pathsDone, raysDone)` is called after

@@ -4,7 +4,8 @@
  * The host keeps a grid of cells over emitted rays (x, v) -- boxes of directions times boxes of
  * the origin's 2D parametrisation, refined where the light is -- with probabilities P(cell)
  * learned from the contributions of earlier paths, mixed with a defensive share of the base
- * density. Per path, one Philox block: 32 bits pick a cell (integer alias table, exact P), 16 + 16
+ * density. Per path, one Philox block: 32 bits (or the batch's lattice: lib/emit_source.h) pick a
+ * cell (integer alias table, exact P), 16 + 16
  * bits the direction in the cell's box (uniform in solid angle: cos(theta) = 1 - s, phi = 2 pi t)
  * or in the sun's cone, 16 + 16 bits the origin in its box. Which sixteenth of the cell the path
  * fell in (its origin quarter and its direction quarter) rides along in beta.w, and connect.cl
@@ -77,7 +78,7 @@ static inline int emit_adaptive(const global RenderParams* params, const Adaptiv
 {
     path_start(p, path);
     const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT);
-    const uint c = alias_pick(e->cell_alias, e->params->cell_alias_shift, bits.x);
+    const uint c = alias_pick(e->cell_alias, e->params->cell_alias_shift, emission_pick_bits(params, path, bits.x, e->params->cell_alias_shift));
     const global AdaptiveCell* cell = e->cells + c;
     const float4 box = cell->box, dirs = cell->dirs;
     const float2 ux = unit16x2(bits.z), uv = unit16x2(bits.y);

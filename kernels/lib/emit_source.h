@@ -25,6 +25,29 @@ static inline void path_start(PathState* p, ulong path)
     p->flags = FEN_PATH_ALIVE;
 }
 
+/* The 32 bits that pick path `path`'s entry of the strategy's first table (the source table, or
+   adaptive's cells), an integer alias table of 2^(32 - shift) columns (lib/sampling.h alias_pick:
+   the high bits choose the column, the low `shift` bits between it and its alias). With
+   params->pick_step > 0 the column bits come from a lattice the host lays over each run of the
+   wavefront (a batch, or a learning pass within one), c = pick_offset + path pick_step (mod 2^32)
+   -- one sweep of [0, 2^32) per run at an offset drawn for it -- and the low bits stay the path's
+   own random bits. Given the offset
+   (uniform), each path's 32 bits are uniform and independent of its other random numbers, as
+   random bits would be, so every path keeps its exact density and the image stays unbiased; the
+   run's columns are stratified; and paths taken one after another (a fused work-item's chunk, a
+   wavefront's slots) read the same or neighbouring columns, where random bits read the table all
+   over (measured: README "Render throughput"). The column/alias choice must stay random: lattice
+   low bits would repeat within a batch and correlate with the column. pick_step 0 (tests that
+   probe the emitters): the path's own random bits. Requires shift < 32. */
+static inline uint emission_pick_bits(const global RenderParams* params, ulong path, uint random_bits,
+                                      uint shift)
+{
+    if (!params->pick_step)
+        return random_bits;
+    const uint low = (1u << shift) - 1u;
+    return ((params->pick_offset + (uint)path * params->pick_step) & ~low) | (random_bits & low);
+}
+
 /* The sun's direction of travel: its axis, or uniform in its cone (u1, u2 in [0, 1)). */
 static inline float3 sun_direction(const global RenderParams* params, float u1, float u2)
 {

@@ -44,6 +44,7 @@
     X(RenderParams, rr_depth) \
     X(RenderParams, split_weight) \
     X(RenderParams, split_max) \
+    X(RenderParams, pick_step) \
     X(SplitState, normal)    \
     X(SplitState, depth)     \
     X(SplitState, path_hi)   \

@@ -131,8 +131,8 @@ typedef struct {
     fen_u32 rr_depth;        /* Russian roulette from this surface interaction on (lib/shade_path.h) */
     fen_f32 split_weight;    /* a path splits at its first diffuse vertex into floor(Y(beta) / this) */
     fen_u32 split_max;       /* ... branches, at most this many (1: never) */
-    fen_u32 pad0;
-    fen_u32 pad1;
+    fen_u32 pick_offset;     /* the emission table pick of path i: pick_offset + i pick_step (mod 2^32), */
+    fen_u32 pick_step;       /*   a lattice over the batch (lib/emit_source.h); pick_step 0: random bits */
 } RenderParams;
 FEN_ASSERT_SIZE(RenderParams, 96);
 FEN_ASSERT_OFFSET(RenderParams, path_end, 32);
@@ -140,6 +140,7 @@ FEN_ASSERT_OFFSET(RenderParams, seed, 40);
 FEN_ASSERT_OFFSET(RenderParams, batch, 72);
 FEN_ASSERT_OFFSET(RenderParams, rr_depth, 76);
 FEN_ASSERT_OFFSET(RenderParams, split_weight, 80);
+FEN_ASSERT_OFFSET(RenderParams, pick_step, 92);
 
 FEN_NS_END
 
