@@ -3,13 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cctype>
 #include <cstddef>
+#include <sstream>
 #include <vector>
 
 #include "cl/launch.h"
 #include "shared/fen_layout.h"
 #include "shared/fen_rng.h"
 #include "support/cl_fixture.h"
+#include "cl/device.h"
+#include "util/error.h"
 
 namespace fen {
 namespace {
@@ -94,6 +98,25 @@ TEST(Probes, DivisionAndSqrtRoundAsOnTheHost)
     }
     EXPECT_EQ(quotients, 0u);
     EXPECT_EQ(roots, 0u);
+}
+
+TEST(Probes, DeviceIsFoundByItsPlatformVersion)
+{
+    // --device matches "platform / device (platform version)": PoCL's platform is named "Portable
+    // Computing Language", and `--device pocl` finds it only through its version string
+    // ("OpenCL 3.0 PoCL 3.1 ..."); NVIDIA's is found by "cuda" the same way.
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    const ocl::DeviceInfo& d = ctx->info();
+    std::istringstream words(d.platformVersion);
+    std::string opencl, version, implementation;
+    words >> opencl >> version >> implementation;  // "OpenCL" "3.0" "<implementation>"
+    if (implementation.empty())
+        GTEST_SKIP() << "platform version '" << d.platformVersion << "' names no implementation";
+    for (char& c : implementation)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const ocl::DeviceInfo found = ocl::selectDevice(implementation);
+    EXPECT_NE(found.matchText().find(d.platformVersion), std::string::npos) << implementation;
+    EXPECT_THROW(ocl::selectDevice("no such implementation"), Error);
 }
 
 TEST(Probes, PhiloxKnownAnswer)
