@@ -76,6 +76,9 @@ TEST(Cli, UnknownDevice)
 {
     expectError(run("bench --device no-such-device --rays 1000"), 1, "'no-such-device'");
     expectError(run("bench --device 99 --rays 1000"), 1, "index 99");
+    // The work-group size knob is checked before any launch (README "Kernels and OpenCL").
+    expectError(run("bench --rays 1000 --runs 1 --no-embree", "FEN_LOCAL_SIZE=48"), 1, "FEN_LOCAL_SIZE '48'");
+    expectError(run("bench --rays 1000 --runs 1 --no-embree", "FEN_LOCAL_SIZE=2048"), 1, "power of two");
 }
 
 TEST(Cli, NoOpenClPlatform)
