@@ -46,7 +46,7 @@ public:
     cl::CommandQueue& queue() { return queue_; }
     KernelStats& stats() { return stats_; }
     // Work-items per work-group of a launch that names none: 64, or FEN_LOCAL_SIZE (a power of
-    // two up to 1024, for measuring another size on a device; README "Environment").
+    // two up to 1024, for measuring another size on a device; README "Kernels and OpenCL").
     std::size_t localSize() const { return localSize_; }
 
     // kernels/<mainFile> built with `-D` definitions (e.g. "FEN_BVH_WIDTH=8"); built once per

@@ -28,9 +28,11 @@ std::uint32_t defaultPoolSlots(const ocl::DeviceInfo& device)
         return 1u << 16;
     const std::uint64_t slotBytes = sizeof(dev::PathState) + sizeof(dev::SurfaceHit) +
                                     sizeof(dev::SplitState) + sizeof(dev::Connection);
+    const std::uint64_t largest = std::max({sizeof(dev::PathState), sizeof(dev::SurfaceHit),
+                                            sizeof(dev::SplitState), sizeof(dev::Connection)});
     std::uint32_t slots = 1u << 21;
     while (slots > (1u << 16) && (slots * slotBytes > device.globalMemBytes / 4 ||
-                                  slots * sizeof(dev::Connection) > device.maxAllocBytes))
+                                  slots * largest > device.maxAllocBytes))
         slots /= 2;
     return slots;
 }

@@ -161,11 +161,12 @@ static inline uint portal_pick_triangle(const Portals* portals, uint bin, float3
 
 /* A complement path (a share c of all): `uniform` emission, rejected when its line crosses a portal;
    weight over c; flagged for the statistics only. */
-static inline int emit_portal_complement(const global RenderParams* params, const PortalEmitter* e,
-                                         RngBlock bits, uint pick, float share, PathState* p)
+static inline int emit_portal_complement(const global RenderParams* params, const PortalEmitter* e, ulong path,
+                                         RngBlock bits, float share, PathState* p)
 {
     const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
-    const uint entry = alias_pick(e->uniform_sources.alias, e->uniform_sources.params->alias_shift, pick);
+    const uint shift = e->uniform_sources.params->alias_shift; /* its own table's: the alias bits stay random */
+    const uint entry = alias_pick(e->uniform_sources.alias, shift, emission_pick_bits(params, path, bits.x, shift));
     float3 weight;
     const float3 dir = source_direction(params, &e->uniform_sky, e->uniform_sources.params, entry, u.z, u.w, &weight);
     float3 t1, t2;
@@ -189,11 +190,11 @@ static inline int emit_portal(const global RenderParams* params, const PortalEmi
     const RngBlock bits2 = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT_PORTAL);
     const float4 u2 = rng_unit24x4(bits2.y, bits2.z, bits2.w);
     const float complement = e->portal_params->complement;
-    const uint pick = emission_pick_bits(params, path, bits.x, e->sources.params->alias_shift); /* source entry */
     if (complement > 0.0f && u2.w < complement)
-        return emit_portal_complement(params, e, bits, pick, complement, p);
+        return emit_portal_complement(params, e, path, bits, complement, p);
 
-    const uint entry = alias_pick(e->sources.alias, e->sources.params->alias_shift, pick);
+    const uint shift = e->sources.params->alias_shift;
+    const uint entry = alias_pick(e->sources.alias, shift, emission_pick_bits(params, path, bits.x, shift));
     float3 beta;
     const float3 dir = source_direction(params, &e->sky, e->sources.params, entry,
                                         fen_u32_to_unit(bits.z), fen_u32_to_unit(bits.w), &beta);

@@ -14,6 +14,7 @@
 #define FEN_RNG_SCATTER 2u  /* glass choice, scattering direction, Russian roulette */
 #define FEN_RNG_CAMERA 3u   /* camera pass: position in the pixel */
 #define FEN_RNG_GUIDE 5u    /* first-bounce guide: box (32 bits), point in it (2 x 32) */
+/* 6: taken on the host -- each run's table-pick lattice offset (render/renderer.cpp setPickLattice) */
 
 static inline RngBlock rng_bits(uint seed, uint stream, uint c0, uint c1, uint c2, uint purpose)
 {
