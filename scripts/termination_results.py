@@ -40,6 +40,7 @@ def main():
     ap.add_argument("--methods", default="uniform,portal,adaptive")
     ap.add_argument("--width", type=int, default=320)
     ap.add_argument("--table-only", action="store_true")
+    ap.add_argument("--data", default="docs/results/termination_data.md", help="where the table goes")
     a = ap.parse_args()
     depths = [int(d) for d in a.depths.split(",")]
     seeds = [int(s) for s in a.seeds.split(",")]
@@ -65,7 +66,7 @@ def main():
     lines = ["# When Russian roulette starts: efficiency\n",
              "Each scene and method rendered for %g s (%d px wide) with Russian roulette from interaction K on "
              "(`--roulette-depth K`; before it every path goes on with its weight times the albedo), seeds %s. "
-             "*Efficiency* 1 / (noise² × seconds) relative to K = 0 (median over the seeds; noise: the batch estimate "
+             "*Efficiency* 1 / (noise² × seconds) relative to the first K (median over the seeds; noise: the batch estimate "
              "of each pixel's standard error, RMS over the region), *rays/path* extension rays per emitted path, "
              "*conn/path* camera connections per path. Regenerate: `python3 scripts/termination_results.py "
              "--seconds %g --depths %s`.\n" % (a.seconds, a.width, ", ".join(map(str, seeds)), a.seconds,
@@ -88,7 +89,7 @@ def main():
     lines.append("")
     any_j = next(iter(res.values()))
     lines.append("Machine: %s; %s kernels.\n" % (any_j["device"], any_j.get("kernel_mode", "wavefront")))
-    with open("docs/results/termination_data.md", "w") as f:
+    with open(a.data, "w") as f:
         f.write("\n".join(lines))
     print("\n".join(lines))
 
