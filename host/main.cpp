@@ -158,7 +158,7 @@ int main(int argc, char** argv)
     renderCmd->add_option("--kernels", render.kernels,
                           "How the stages run: fused (one kernel per path, default on a CPU) or wavefront (default on a GPU)");
     renderCmd->add_option("--roulette-depth", render.rouletteDepth,
-                          "Russian roulette from this surface interaction on; before it every path goes on (default 3)");
+                          "Russian roulette from this surface interaction on; before it every path goes on (default 5 for uniform, 3 for portal and adaptive)");
     renderCmd->add_option("--split", render.split,
                           "At its first diffuse hit, a path weighing k >= 2 times the mean emitted weight goes on as min(k, N) "
                           "branches of 1/k the weight (1: never; default 1)");

@@ -244,8 +244,8 @@ int runRender(const RenderOptions& opt)
     settings.poolSize = opt.poolSize;
     if (!opt.kernels.empty())
         settings.kernels = parseKernelMode(opt.kernels);
-    if (opt.rouletteDepth >= 0)
-        settings.rouletteDepth = opt.rouletteDepth;
+    settings.rouletteDepth =
+        opt.rouletteDepth >= 0 ? opt.rouletteDepth : defaultRouletteDepth(settings.emission.method);
     if (opt.split != RenderOptions::kUnset)
         settings.splitMax = opt.split;
     if (!std::isnan(opt.splitWeight))

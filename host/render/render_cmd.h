@@ -51,7 +51,7 @@ struct RenderOptions {
     std::uint32_t poolSize = 0;
     double exposure = 0.0;          // PNG preview; 0 = automatic
     std::string kernels;            // --kernels wavefront|fused; empty: the device's default
-    int rouletteDepth = -1;         // -1: the default of RenderSettings
+    int rouletteDepth = -1;         // -1: the method's, defaultRouletteDepth()
     int split = kUnset;             // unset: the default of RenderSettings (splitMax)
     double splitWeight = std::numeric_limits<double>::quiet_NaN();  // NaN: RenderSettings' default
     int progress = -1;              // -1: when stderr is a terminal; 0 off; 1 on

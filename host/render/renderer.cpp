@@ -26,6 +26,14 @@ double since(Clock::time_point t0)
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// The settings with what they leave to the method filled in.
+RenderSettings withMethodDefaults(RenderSettings s)
+{
+    if (s.rouletteDepth < 0)
+        s.rouletteDepth = defaultRouletteDepth(s.emission.method);
+    return s;
+}
+
 std::string millions(double v)
 {
     char buf[32];
@@ -55,7 +63,7 @@ struct Renderer::Impl {
 
     Impl(ocl::Context& c, const Scene& s, const std::optional<Goniogram>& g, const CameraSpec& cam,
          int w, int h, const RenderSettings& st)
-        : ctx(c), settings(st),
+        : ctx(c), settings(withMethodDefaults(st)),
           scene(c, s, st.bvhWidth > 0 ? st.bvhWidth : defaultBvhWidth(c.info().isGpu())),
           skyTables(makeSkyTables(g)), sky(c, skyTables),
           film(c, w, h, referenceLuminance(s, skyTables)),
@@ -84,7 +92,7 @@ struct Renderer::Impl {
         p.sky_phi_nodes = skyTables.phiNodes;
         p.pool_size = pool;
         p.camera_spp = static_cast<std::uint32_t>(st.cameraSpp);
-        p.rr_depth = static_cast<std::uint32_t>(st.rouletteDepth);
+        p.rr_depth = static_cast<std::uint32_t>(settings.rouletteDepth);  // resolved, never -1
         p.split_max = static_cast<std::uint32_t>(st.splitMax);
         p.split_weight = static_cast<float>(st.splitWeight * strategy->emittedFluxPerPath());
         if (!(p.split_weight > 0.0f))
@@ -429,6 +437,11 @@ double RenderResult::roiMeanStdErr(std::size_t k) const
     return std::sqrt(ss / static_cast<double>(v.size() - 1) / W);
 }
 
+int defaultRouletteDepth(EmissionMethod method)
+{
+    return method == EmissionMethod::Uniform ? 5 : 3;
+}
+
 Renderer::Renderer(ocl::Context& ctx, const Scene& scene, const std::optional<Goniogram>& sky,
                    const CameraSpec& camera, int width, int height, const RenderSettings& settings)
 {
@@ -439,7 +452,7 @@ Renderer::Renderer(ocl::Context& ctx, const Scene& scene, const std::optional<Go
                         "compares batches)"));
     if (settings.maxBounces < 1)
         throw Error(cat("--max-bounces ", settings.maxBounces, " must be at least 1"));
-    if (settings.rouletteDepth < 0 || settings.rouletteDepth > 64)
+    if (settings.rouletteDepth < -1 || settings.rouletteDepth > 64)
         throw Error(cat("--roulette-depth ", settings.rouletteDepth, " must be in 0..64"));
     if (settings.splitMax < 1 || settings.splitMax > 255)
         throw Error(cat("--split ", settings.splitMax, " must be in 1..255 branches (1: never split)"));

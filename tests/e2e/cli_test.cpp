@@ -269,6 +269,25 @@ TEST(CliRender, ACheckpointResumesBitIdentically)
                 "--checkpoint-every");
 }
 
+// Where roulette starts is the method's default unless given (docs/results/termination.md):
+// uniform emission's paths start outside and bounce there first, so they get two more free hits.
+TEST(CliRender, RouletteStartsAtTheMethodsDefaultUnlessGiven)
+{
+    const std::string dir = test::tempDir("cli-render-roulette");
+    const std::string scene = std::string(FEN_SCENES_DIR) + "/room.gltf";
+    const auto depth = [&](const std::string& name, const std::string& opts) {
+        const CliRun r = run("render " + scene + " --out " + dir + "/" + name + ".exr --paths 20000 "
+                             "--width 16 --no-progress " + opts);
+        EXPECT_EQ(r.status, 0) << r.err;
+        return nlohmann::json::parse(slurp(dir + "/" + name + ".json"))["roulette_depth"].get<int>();
+    };
+    EXPECT_EQ(depth("u", "--method uniform"), 5);
+    EXPECT_EQ(depth("p", "--method portal"), 3);
+    EXPECT_EQ(depth("a", "--method adaptive"), 3);
+    EXPECT_EQ(depth("u0", "--method uniform --roulette-depth 0"), 0);
+    EXPECT_EQ(depth("p7", "--method portal --roulette-depth 7"), 7);
+}
+
 TEST(CliRender, TimeBudgetAndPortalsFromTheCommandLine)
 {
     const std::string dir = test::tempDir("cli-render-time");

@@ -12,7 +12,8 @@
 namespace fen {
 namespace {
 
-RenderResult renderRoom(ocl::Context& ctx, std::uint32_t seed, std::uint32_t pool)
+RenderResult renderRoom(ocl::Context& ctx, std::uint32_t seed, std::uint32_t pool,
+                        EmissionMethod method = EmissionMethod::Uniform, int rouletteDepth = -1)
 {
     const Scene scene = loadGltf(std::string(FEN_SCENES_DIR) + "/room.gltf");
     const auto sky = buildSky(scene.sky);
@@ -20,6 +21,8 @@ RenderResult renderRoom(ocl::Context& ctx, std::uint32_t seed, std::uint32_t poo
     s.paths = 1u << 20;
     s.seed = seed;
     s.poolSize = pool;
+    s.emission.method = method;
+    s.rouletteDepth = rouletteDepth;
     s.kernels = KernelMode::Wavefront;  // the pool is the wavefront's (fused: fused_test.cpp)
     Renderer r(ctx, scene, sky, scene.cameras.at(0), 96, 72, s);
     return r.render();
@@ -42,6 +45,27 @@ TEST(Determinism, SameSeedGivesBitIdenticalImages)
     EXPECT_GT(sum, 0.0) << "the test scene rendered black";
     const RenderResult c = renderRoom(*ctx, 8, 1u << 16);
     EXPECT_NE(0, std::memcmp(a.image.rgb.data(), c.image.rgb.data(), a.image.rgb.size() * 4));
+}
+
+// Settings that leave the roulette depth to the method (-1, RenderSettings' default) render what
+// the method's default depth renders, bit for bit: the renderer hands the kernels the resolved
+// depth, never -1 (which, as an unsigned depth, would turn roulette off).
+TEST(Determinism, TheMethodsRouletteDefaultIsTheDepthRendered)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    for (EmissionMethod m : {EmissionMethod::Uniform, EmissionMethod::Portal}) {
+        SCOPED_TRACE(methodName(m));
+        const RenderResult byDefault = renderRoom(*ctx, 7, 1u << 16, m);
+        const RenderResult given = renderRoom(*ctx, 7, 1u << 16, m, defaultRouletteDepth(m));
+        EXPECT_EQ(0, std::memcmp(byDefault.image.rgb.data(), given.image.rgb.data(),
+                                 byDefault.image.rgb.size() * 4));
+        EXPECT_EQ(byDefault.counts.extensionRays, given.counts.extensionRays);
+        const RenderResult other = renderRoom(*ctx, 7, 1u << 16, m, defaultRouletteDepth(m) + 1);
+        EXPECT_NE(byDefault.counts.extensionRays, other.counts.extensionRays);
+    }
+    EXPECT_EQ(defaultRouletteDepth(EmissionMethod::Uniform), 5);
+    EXPECT_EQ(defaultRouletteDepth(EmissionMethod::Portal), 3);
+    EXPECT_EQ(defaultRouletteDepth(EmissionMethod::Adaptive), 3);
 }
 
 }  // namespace
