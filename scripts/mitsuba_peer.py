@@ -105,6 +105,8 @@ def scene_dict(mi, gltf_path, width, spp, rfilter, workdir, sky_res=(2048, 1024)
     os.makedirs(workdir, exist_ok=True)
     scene = {"type": "scene"}
     mats = doc["materials"]
+    if any("children" in n for n in doc["nodes"]):
+        sys.exit(f"{gltf_path}: node hierarchies are not converted (only flat scenes, as shipped)")
     for i, node in enumerate(doc["nodes"]):
         if "mesh" in node:
             if any(k in node for k in ("translation", "rotation", "scale", "matrix")):
@@ -115,8 +117,8 @@ def scene_dict(mi, gltf_path, width, spp, rfilter, workdir, sky_res=(2048, 1024)
                 m = mats[prim["material"]]
                 rgb = m["pbrMetallicRoughness"]["baseColorFactor"][:3]
                 ext = m.get("extensions", {})
-                if "KHR_materials_transmission" in ext:
-                    t = ext["KHR_materials_transmission"]["transmissionFactor"]
+                t = ext.get("KHR_materials_transmission", {}).get("transmissionFactor", 0.0)
+                if t > 0.0:  # fenestra: glass only where something passes
                     ior = ext.get("KHR_materials_ior", {}).get("ior", 1.5)
                     if ior == 1.0 and t == 1.0:
                         continue  # an opening: nothing to draw
@@ -133,6 +135,8 @@ def scene_dict(mi, gltf_path, width, spp, rfilter, workdir, sky_res=(2048, 1024)
             light = doc["extensions"]["KHR_lights_punctual"]["lights"][
                 node["extensions"]["KHR_lights_punctual"]["light"]]
             travel = quat_rotate(node.get("rotation", [0, 0, 0, 1]), np.array([0.0, 0.0, -1.0]))
+            if light.get("extras", {}).get("angular_radius_deg", 0.0) > 0.0:
+                sys.exit(f"{gltf_path}: a sun of finite angular radius is not converted")
             e = light["intensity"]
             scene["sun"] = {"type": "directional", "direction": travel.tolist(),
                             "irradiance": {"type": "rgb",

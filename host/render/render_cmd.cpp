@@ -245,7 +245,7 @@ int runRender(const RenderOptions& opt)
     if (!opt.kernels.empty())
         settings.kernels = parseKernelMode(opt.kernels);
     settings.rouletteDepth =
-        opt.rouletteDepth >= 0 ? opt.rouletteDepth : defaultRouletteDepth(settings.emission.method);
+        opt.rouletteDepth == -1 ? defaultRouletteDepth(settings.emission.method) : opt.rouletteDepth;
     if (opt.split != RenderOptions::kUnset)
         settings.splitMax = opt.split;
     if (!std::isnan(opt.splitWeight))

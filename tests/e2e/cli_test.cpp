@@ -113,6 +113,14 @@ TEST(Cli, BenchJsonSmoke)
         }
     }
     EXPECT_GT(j["scene"]["triangles"].get<int>(), 100000);
+    // --render: the render's record says how it ended its paths
+    const CliRun rr = run("bench " + std::string(FEN_SCENES_DIR) + "/room.gltf --rays 20000 --runs 1 --warmup 0 "
+                          "--no-embree --render --render-paths 20000 --json");
+    ASSERT_EQ(rr.status, 0) << rr.err;
+    const auto jr = nlohmann::json::parse(rr.out);
+    EXPECT_EQ(jr["render"]["method"], "uniform");
+    EXPECT_EQ(jr["render"]["roulette_depth"], 5);
+    EXPECT_GT(jr["render"]["paths"].get<std::uint64_t>(), 0u);
 }
 
 // A minimal valid scene for the render CLI: one plate, a camera, a uniform sky.

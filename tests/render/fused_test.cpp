@@ -84,6 +84,8 @@ INSTANTIATE_TEST_SUITE_P(
     Strategies, FusedKernel,
     ::testing::Values(Case{"uniform", "room.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform, 0},
                       Case{"uniform_rr3", "room.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform, 3},
+                      // -1: the method's default depth (5 for uniform, render/renderer.h)
+                      Case{"uniform_default_depth", "room.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform, -1},
                       Case{"portal_glass", "bay_window.gltf", EmissionMethod::Portal, EmissionMethod::Uniform, 0},
                       Case{"adaptive", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, 0},
                       Case{"adaptive_portal", "inner_room.gltf", EmissionMethod::Adaptive, EmissionMethod::Portal, 2},
