@@ -312,7 +312,7 @@ int runBench(const BenchOptions& opt)
                            {"paths", lastRender.paths},
                            {"seconds", lastRender.renderSeconds},
                            {"method", opt.renderMethod},
-                           {"roulette_depth", defaultRouletteDepth(parseEmissionMethod(opt.renderMethod))},
+                           {"roulette_depth", lastRender.rouletteDepth},
                            {"kernel_mode", kernelModeName(lastRender.kernelMode)},
                            {"emit_share", emitShare(lastRender)},
                            {"width", 320},

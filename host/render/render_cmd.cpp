@@ -244,8 +244,7 @@ int runRender(const RenderOptions& opt)
     settings.poolSize = opt.poolSize;
     if (!opt.kernels.empty())
         settings.kernels = parseKernelMode(opt.kernels);
-    settings.rouletteDepth =
-        opt.rouletteDepth == -1 ? defaultRouletteDepth(settings.emission.method) : opt.rouletteDepth;
+    settings.rouletteDepth = opt.rouletteDepth;  // -1: the renderer takes the method's
     if (opt.split != RenderOptions::kUnset)
         settings.splitMax = opt.split;
     if (!std::isnan(opt.splitWeight))
@@ -318,7 +317,7 @@ int runRender(const RenderOptions& opt)
     j["height"] = height;
     j["seed"] = opt.seed;
     j["max_bounces"] = opt.maxBounces;
-    j["roulette_depth"] = settings.rouletteDepth;
+    j["roulette_depth"] = r.rouletteDepth;
     j["split_max"] = settings.splitMax;
     j["split_weight"] = settings.splitWeight;
     j["kernel_mode"] = kernelModeName(r.kernelMode);

@@ -302,6 +302,7 @@ struct Renderer::Impl {
         r.bvhWidth = scene.bvh().width();
         r.poolSize = pool;
         r.kernelMode = wavefront->mode();
+        r.rouletteDepth = settings.rouletteDepth;
         r.method = strategy->method();
         const int batches = std::max(2, settings.batches);
         BatchStatistics stats(film.width(), film.height(), settings.rois);

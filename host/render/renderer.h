@@ -99,6 +99,7 @@ struct RenderResult {
     int bvhWidth = 0;
     std::uint32_t poolSize = 0;
     KernelMode kernelMode = KernelMode::Wavefront;
+    int rouletteDepth = 0;            // the depth rendered with (the method's, when left at -1)
     EmissionMethod method = EmissionMethod::Uniform;
     nlohmann::json emission;          // the strategy's report
     double emittedFluxPerPath = 0.0;  // lm (EmissionStrategy::emittedFluxPerPath)

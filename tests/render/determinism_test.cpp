@@ -60,6 +60,7 @@ TEST(Determinism, TheMethodsRouletteDefaultIsTheDepthRendered)
         EXPECT_EQ(0, std::memcmp(byDefault.image.rgb.data(), given.image.rgb.data(),
                                  byDefault.image.rgb.size() * 4));
         EXPECT_EQ(byDefault.counts.extensionRays, given.counts.extensionRays);
+        EXPECT_EQ(byDefault.rouletteDepth, defaultRouletteDepth(m));  // what the JSON reports
         const RenderResult other = renderRoom(*ctx, 7, 1u << 16, m, defaultRouletteDepth(m) + 1);
         EXPECT_NE(byDefault.counts.extensionRays, other.counts.extensionRays);
     }
