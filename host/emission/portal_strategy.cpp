@@ -37,7 +37,7 @@ public:
         ocl::Context& c = in.ctx;
         // Sky paths: factor_k sin(theta) times 1 -- the portal part A_g |v.n_g| / P(g | bin) comes
         // in per path (lib/emit_portal.h).
-        const dev::SourceParams sp = sourceParams(pe_.sources, pe_.sunWeight, 1.0);
+        const dev::SourceParams sp = sourceParams(pe_.sources, pe_.sunWeight);
         sourceParams_ = c.buffer(CL_MEM_READ_ONLY, sizeof sp, "portal emission parameters", &sp);
         dev::PortalParams pp{};
         pp.groups = static_cast<std::uint32_t>(pe_.groups.size());
@@ -58,7 +58,7 @@ public:
                         pe_.triangleCdf.data());
         vertices_ = c.buffer(CL_MEM_READ_ONLY, pe_.vertices.size() * 16, "portal triangles", pe_.vertices.data());
         bvh_ = std::make_unique<DeviceBvh>(c, pe_.bvh);
-        const dev::SourceParams up = sourceParams(uniform_.sources, uniform_.sunWeight, uniform_.skyWeight);
+        const dev::SourceParams up = sourceParams(uniform_.sources, uniform_.sunWeight, &uniform_.box);
         uniformParams_ = c.buffer(CL_MEM_READ_ONLY, sizeof up, "complement emission parameters", &up);
         uniformAlias_ = c.buffer(CL_MEM_READ_ONLY, uniform_.sources.alias.size() * 4, "complement source table",
                                  uniform_.sources.alias.data());
@@ -80,7 +80,7 @@ public:
     }
     bool learns() const override { return complement_ > 0.0; }
     // Through the portals (overlaps counted once per portal, so an upper bound), and with a
-    // complement also the rest of the disk's flux, which its paths carry.
+    // complement also the rest of the flux into the scene's box, which its paths carry.
     double emittedFluxPerPath() const override
     {
         const double portals = pe_.sunFlux_lm + pe_.skyFlux_lm;

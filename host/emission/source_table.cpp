@@ -101,6 +101,13 @@ SkyTables makeSkyTables(const std::optional<Goniogram>& sky)
         for (std::uint32_t j = 0; j + 1 < t.phiNodes; ++j) {
             t.cellSin.push_back(g.cellIntegralSin(i, j));
             t.cellFlat.push_back(g.cellIntegralFlat(i, j));
+            glm::dvec3 absDir;
+            for (int a = 0; a < 3; ++a) {
+                glm::dvec3 n(0.0);
+                n[a] = 1.0;
+                absDir[a] = g.cellClippedIntegral(i, j, n) + g.cellClippedIntegral(i, j, -n);
+            }
+            t.cellAbsDir.push_back(absDir);
             t.integral_cd_m2_sr += t.cellSin.back();
         }
     return t;
@@ -138,26 +145,42 @@ double referenceLuminance(const Scene& scene, const SkyTables& sky)
     return std::max({sunIlluminanceY_lux(scene) / M_PI, sky.maxLuminance_cd_m2, 1e-6});
 }
 
+EmissionBox emissionBox(const Scene& scene)
+{
+    EmissionBox box;
+    const Aabb& b = scene.bounds;
+    if (b.empty())
+        return box;  // nothing to hit: A(v) = 0, every weight zero
+    const glm::dvec3 lo(b.lo), hi(b.hi);
+    // enlarged like the sphere: a ground plane on the box's face must lie inside it
+    const glm::dvec3 margin = 5e-4 * (hi - lo) + glm::dvec3(1e-3 + 1e-6 * glm::length(hi + lo));
+    box.min = lo - margin;
+    box.size = hi - lo + 2.0 * margin;
+    return box;
+}
+
 UniformSources setupUniformEmission(const Scene& scene, const SkyTables& sky)
 {
     UniformSources e;
-    emissionSphere(scene, &e.sphereCentre, &e.sphereRadius_m);
-    const double disk = M_PI * e.sphereRadius_m * e.sphereRadius_m;
+    e.box = emissionBox(scene);
     const glm::dvec3 E = scene.sun.present ? scene.sun.illuminanceRgb_lux : glm::dvec3(0.0);
-    e.sunFlux = sunIlluminanceY_lux(scene) * disk;
-    e.skyFlux = sky.integral_cd_m2_sr * disk;
+    e.sunFlux = sunIlluminanceY_lux(scene) * e.box.silhouetteArea(scene.sun.travelDirection);
 
-    // Entry 0: the sun, by its flux; entries 1 + k: sky cells, by their flux (disk x cellSin).
+    // Entry 0: the sun, by its flux into the box; entries 1 + k: sky cells, by theirs,
+    // ∫_cell A(w) g dw = sum_a (area of the faces normal to a) ∫_cell |w_a| g dw.
+    const glm::dvec3 faceArea(e.box.size.y * e.box.size.z, e.box.size.z * e.box.size.x,
+                              e.box.size.x * e.box.size.y);
     std::vector<double> w{e.sunFlux};
-    for (double s : sky.cellSin)
-        w.push_back(s * disk);
+    for (const glm::dvec3& f : sky.cellAbsDir) {
+        w.push_back(glm::dot(faceArea, f));
+        e.skyFlux += w.back();
+    }
     if (e.sunFlux + e.skyFlux <= 0.0)
-        w[0] = 1.0;  // no light at all: a table that draws the (zero-weight) sun
+        w[0] = 1.0;  // no light (or nothing to hit): a table that draws the (zero-weight) sun
     e.sources = makeIntegerCdf(w);
     e.pSun = e.sunFlux > 0.0 ? e.sources.probability(0) : 0.0;
     if (e.pSun > 0.0)
-        e.sunWeight = E * disk * sunConeFactor(scene.sun) / e.pSun;
-    e.skyWeight = disk;
+        e.sunWeight = E * sunConeFactor(scene.sun) / e.pSun;
     e.skyFactor.resize(sky.cells);
     for (std::uint32_t k = 0; k < sky.cells; ++k) {
         const double p = e.sources.probability(1 + k);
@@ -168,12 +191,17 @@ UniformSources setupUniformEmission(const Scene& scene, const SkyTables& sky)
     return e;
 }
 
-dev::SourceParams sourceParams(const IntegerCdf& sources, const glm::dvec3& sunWeight, double skyScale)
+dev::SourceParams sourceParams(const IntegerCdf& sources, const glm::dvec3& sunWeight, const EmissionBox* box)
 {
     dev::SourceParams p{};
     p.sun_weight = {static_cast<float>(sunWeight.r), static_cast<float>(sunWeight.g),
                     static_cast<float>(sunWeight.b), 0.0f};
-    p.sky_scale = static_cast<float>(skyScale);
+    if (box) {
+        p.box_min = {static_cast<float>(box->min.x), static_cast<float>(box->min.y),
+                     static_cast<float>(box->min.z), 0.0f};
+        p.box_size = {static_cast<float>(box->size.x), static_cast<float>(box->size.y),
+                      static_cast<float>(box->size.z), 0.0f};
+    }
     p.alias_shift = sources.aliasShift;
     return p;
 }

@@ -1,13 +1,13 @@
 // source_table.h — what the emission strategies draw light sources from (DESIGN.md §3.1): the
 // sky's arrays (host and device), the integer tables that choose a source, and the `uniform`
-// strategy's emission disk, source choice and path weights (kernels/lib/emit_source.h,
+// strategy's emission box, source choice and path weights (kernels/lib/emit_source.h,
 // lib/emit_uniform.h, lib/sky.h and lib/sampling.h are the device half).
 //
 // One integer table chooses both the source and the sky cell from a path's first 32 random bits:
 // entry 0 is the sun, entry 1 + k is sky cell k, each with probability n_e / 2^32 exactly, so the
-// weights use the probabilities the device realises. Cells get units in proportion to their
-// integral of g sin(theta) (so sky paths carry nearly equal weights), the sun in proportion to
-// its flux through the disk, and every source that sends light gets at least one unit.
+// weights use the probabilities the device realises. For `uniform`, each source gets units in
+// proportion to its flux into the emission box (so sky paths carry nearly equal weights), and
+// every source that sends light gets at least one unit.
 #pragma once
 
 #include <optional>
@@ -25,6 +25,7 @@ namespace fen {
 struct SkyTables {
     std::vector<float> theta, phi, values;  // node angles (rad) and luminances (cd/m^2)
     std::vector<double> cellSin, cellFlat;  // per cell: ∫∫ g sin(theta), ∫∫ g (d theta d phi)
+    std::vector<glm::dvec3> cellAbsDir;     // per cell: ∫ |w_a| g dw for each axis a (w unit)
     std::uint32_t thetaNodes = 0, phiNodes = 0, cells = 0;
     double integral_cd_m2_sr = 0.0;         // ∫ g dω over the upper hemisphere
     double maxLuminance_cd_m2 = 0.0;
@@ -58,24 +59,37 @@ struct IntegerCdf {
 // the alias table, not needed for binary searches.
 IntegerCdf makeIntegerCdf(const std::vector<double>& weight, bool alias = true);
 
-// The `uniform` strategy's sources: the emission disk covering the scene's bounding sphere, the
-// table choosing the sun or a sky cell in proportion to its flux through the disk, and weights.
+// The box every `uniform` line enters (DESIGN.md §3.1): the scene's bounds, a little enlarged so
+// that geometry on their faces is inside. Seen along a unit direction v it covers
+// A(v) = sum_a |v_a| (the area of the faces normal to a): a line through the box's silhouette is
+// the only kind that can meet a triangle.
+struct EmissionBox {
+    glm::dvec3 min{0.0}, size{0.0};
+    double silhouetteArea(const glm::dvec3& v) const
+    {
+        return std::fabs(v.x) * size.y * size.z + std::fabs(v.y) * size.z * size.x +
+               std::fabs(v.z) * size.x * size.y;
+    }
+};
+EmissionBox emissionBox(const Scene& scene);
+
+// The `uniform` strategy's sources: the emission box, the table choosing the sun or a sky cell in
+// proportion to its flux through the box's silhouette, and weights (the kernel multiplies in the
+// silhouette's area A(v) per path).
 struct UniformSources {
-    glm::dvec3 sphereCentre{0.0};
-    double sphereRadius_m = 0.0;
-    double sunFlux = 0.0;          // luminous flux through the emission disk (lm)
-    double skyFlux = 0.0;
+    EmissionBox box;
+    double sunFlux = 0.0;          // luminous flux into the box (lm; A at the sun's axis)
+    double skyFlux = 0.0;          // exact for the goniogram: sum over cells of ∫ A(w) g dw
     double pSun = 0.0;             // realised probability that a path starts at the sun
     IntegerCdf sources;            // entry 0: the sun; entry 1 + k: sky cell k
     std::vector<float> skyFactor;  // per sky cell: B_k / P(entry 1 + k), see lib/sky.h
-    glm::dvec3 sunWeight{0.0};     // rgb weight of a sun path: E pi R^2 / P(sun)
-    double skyWeight = 0.0;        // pi R^2: times factor_k sin(theta) for a sky path
+    glm::dvec3 sunWeight{0.0};     // rgb weight of a sun path over A(v): E / P(sun)
 };
 
 UniformSources setupUniformEmission(const Scene& scene, const SkyTables& sky);
 
 // The sphere every emitted path starts outside of: the scene's bounding sphere, a little larger
-// (rays must start outside it and the disk must cover every triangle's projection).
+// (rays must start outside it; adaptive's disk must cover every triangle's projection).
 void emissionSphere(const Scene& scene, glm::dvec3* centre, double* radius_m);
 
 // The brightest plausible diffuse luminance of the scene (cd/m^2): what fixed-point scales are
@@ -89,7 +103,9 @@ double sunIlluminanceY_lux(const Scene& scene);
 // per unit weight: this restores its normal illuminance E.
 double sunConeFactor(const Sun& sun);
 
-// The device parameters of a source table (kernels/shared/fen_emission.h SourceParams).
-dev::SourceParams sourceParams(const IntegerCdf& sources, const glm::dvec3& sunWeight, double skyScale);
+// The device parameters of a source table (kernels/shared/fen_emission.h SourceParams); `box`: the
+// uniform strategy's, none for a table that starts no uniform line.
+dev::SourceParams sourceParams(const IntegerCdf& sources, const glm::dvec3& sunWeight,
+                               const EmissionBox* box = nullptr);
 
 }  // namespace fen

@@ -12,7 +12,7 @@ public:
     explicit UniformStrategy(const EmissionInputs& in)
         : sky_(in.deviceSky), sources_(setupUniformEmission(in.scene, in.sky))
     {
-        const dev::SourceParams p = sourceParams(sources_.sources, sources_.sunWeight, sources_.skyWeight);
+        const dev::SourceParams p = sourceParams(sources_.sources, sources_.sunWeight, &sources_.box);
         params_ = in.ctx.buffer(CL_MEM_READ_ONLY, sizeof p, "uniform emission parameters", &p);
         alias_ = in.ctx.buffer(CL_MEM_READ_ONLY, sources_.sources.alias.size() * 4, "source table",
                                sources_.sources.alias.data());
@@ -34,7 +34,7 @@ public:
         return {{"sun_flux_lm", sources_.sunFlux},
                 {"sky_flux_lm", sources_.skyFlux},
                 {"p_sun", sources_.pSun},
-                {"disk_radius_m", sources_.sphereRadius_m}};
+                {"box_size_m", {sources_.box.size.x, sources_.box.size.y, sources_.box.size.z}}};
     }
 
 private:

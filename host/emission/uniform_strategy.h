@@ -1,6 +1,7 @@
 // uniform_strategy.h — the `uniform` emission strategy (DESIGN.md §3.1, the paper's "no
-// optimisation"): every path starts on the disk orthogonal to its direction that covers the
-// scene's bounding sphere; the sun or a sky cell is chosen in proportion to its flux through it.
+// optimisation"): every path enters the box that bounds the scene at a point uniform over the
+// box's silhouette seen along its direction; the sun or a sky cell is chosen in proportion to its
+// flux into the box.
 // Tables: source_table.h; device half: kernels/lib/emit_uniform.h.
 #pragma once
 

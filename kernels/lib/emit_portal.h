@@ -164,14 +164,8 @@ static inline uint portal_pick_triangle(const Portals* portals, uint bin, float3
 static inline int emit_portal_complement(const global RenderParams* params, const PortalEmitter* e, ulong path,
                                          RngBlock bits, float share, PathState* p)
 {
-    const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
-    const uint shift = e->uniform_sources.params->alias_shift; /* its own table's: the alias bits stay random */
-    const uint entry = alias_pick(e->uniform_sources.alias, shift, emission_pick_bits(params, path, bits.x, shift));
-    float3 weight;
-    const float3 dir = source_direction(params, &e->uniform_sky, e->uniform_sources.params, entry, u.z, u.w, &weight);
-    float3 t1, t2;
-    orthonormal_basis(dir, &t1, &t2);
-    const float3 origin = disk_ray_origin(params, dir, t1, t2, sample_disk(u.x, u.y));
+    float3 dir, weight;
+    const float3 origin = uniform_line(params, &e->uniform_sources, &e->uniform_sky, path, bits, &dir, &weight);
     const RayPre r = ray_setup(origin, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
     if (bvh_intersect_any(e->portals.nodes, e->portals.packets, &r))
         return 0;

@@ -1,7 +1,8 @@
 /* emit_source.h — what every emission strategy shares (DESIGN.md §3): starting a path, the
  * direction a source sends light in from two uniforms the caller hands over, the source table of
  * `uniform` and `portal` (the sun, or one sky cell, from 32 random bits with exact probabilities;
- * host: host/emission/source_table.h), and moving an origin back outside the scene.
+ * host: host/emission/source_table.h), `uniform`'s lines into the scene's bounding box (also
+ * the portal complement's), and moving an origin back outside the scene.
  */
 #ifndef FEN_EMIT_SOURCE_H
 #define FEN_EMIT_SOURCE_H
@@ -56,8 +57,8 @@ static inline float3 sun_direction(const global RenderParams* params, float u1, 
 }
 
 /* Direction of travel for table entry `entry` (u1, u2 uniform in [0, 1)). *weight: for the sun
-   src->sun_weight, for sky cell k factor_k sin(theta) src->sky_scale (lib/sky.h); the strategy
-   multiplies in its geometric part. */
+   src->sun_weight, for sky cell k factor_k sin(theta) (lib/sky.h); the strategy multiplies in its
+   geometric part. */
 static inline float3 source_direction(const global RenderParams* params, const Sky* sky,
                                       const global SourceParams* src, uint entry, float u1,
                                       float u2, float3* weight)
@@ -68,7 +69,7 @@ static inline float3 source_direction(const global RenderParams* params, const S
     }
     float w;
     const float3 to_sky = sky_sample(sky, entry - 1, u1, u2, &w);
-    *weight = (float3)(w) * src->sky_scale;
+    *weight = (float3)(w);
     return -to_sky;
 }
 
@@ -80,13 +81,60 @@ static inline float3 origin_outside(const global RenderParams* params, float3 x,
 }
 
 /* The start of a ray along dir through point d (units of the sphere's radius) of the disk that
-   covers the sphere, orthogonal to dir and spanned by t1, t2; 1 % beyond the sphere. */
+   covers the sphere, orthogonal to dir and spanned by t1, t2; 1 % beyond the sphere (adaptive
+   emission's disk region). */
 static inline float3 disk_ray_origin(const global RenderParams* params, float3 dir, float3 t1,
                                      float3 t2, float2 d_unit)
 {
     const float radius = params->sphere.w;
     const float2 d = d_unit * radius;
     return params->sphere.xyz + d.x * t1 + d.y * t2 - dir * (1.01f * radius);
+}
+
+/* The start of a line along dir that enters the emission box (src->box_min, box_size: the
+   scene's bounds, a little enlarged) at a point uniform over the box's silhouette seen along dir
+   (DESIGN.md §3.1), moved back outside the bounding sphere; *area: the silhouette's area (m^2),
+   A(dir) = sum over axes a of |dir_a| times the area of the faces normal to a. Every line into a
+   convex box enters it through exactly one of the (up to) three faces that face the light, and a
+   face's projection along dir is affine, so: a face by its share of A (u1), then uniform on it
+   (the rest of u1, and u2). Lines that miss the box would miss every triangle, so none is drawn --
+   the disk that covers the bounding sphere spent about half its paths on them. u1, u2 in [0, 1). */
+static inline float3 box_line_origin(const global RenderParams* params, const global SourceParams* src,
+                                     float3 dir, float u1, float u2, float* area)
+{
+    const float3 lo = src->box_min.xyz, e = src->box_size.xyz;
+    const float3 a = fabs(dir) * (float3)(e.y * e.z, e.z * e.x, e.x * e.y);
+    *area = a.x + a.y + a.z;
+    float s = u1 * *area;
+    float3 x;
+    /* the entry face normal to axis k is at lo_k when the light travels towards +k */
+    if (s < a.x) {
+        x = (float3)(dir.x > 0.0f ? lo.x : lo.x + e.x, lo.y + e.y * (s / a.x), lo.z + e.z * u2);
+    } else if ((s -= a.x) < a.y) {
+        x = (float3)(lo.x + e.x * u2, dir.y > 0.0f ? lo.y : lo.y + e.y, lo.z + e.z * (s / a.y));
+    } else {
+        /* rounding can leave s a hair past a.z, or a.z zero with s zero: clamp, no 0/0 */
+        const float v = fmin((s - a.y) / fmax(a.z, FLT_MIN), 1.0f);
+        x = (float3)(lo.x + e.x * v, lo.y + e.y * u2, dir.z > 0.0f ? lo.z : lo.z + e.z);
+    }
+    return origin_outside(params, x, dir);
+}
+
+/* A `uniform` line (DESIGN.md §3.1) from one Philox block: its first 32 bits (or the batch's
+   lattice, emission_pick_bits) pick the sun or a sky cell from `table`, the other 96 give four
+   24-bit uniforms for the direction and the point on the box's silhouette. *weight: the
+   source's weight times the silhouette's area. */
+static inline float3 uniform_line(const global RenderParams* params, const SourceTable* table, const Sky* sky,
+                                  ulong path, RngBlock bits, float3* dir, float3* weight)
+{
+    const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
+    const uint shift = table->params->alias_shift;
+    const uint entry = alias_pick(table->alias, shift, emission_pick_bits(params, path, bits.x, shift));
+    *dir = source_direction(params, sky, table->params, entry, u.z, u.w, weight);
+    float area;
+    const float3 origin = box_line_origin(params, table->params, *dir, u.x, u.y, &area);
+    *weight *= area;
+    return origin;
 }
 
 #endif /* FEN_EMIT_SOURCE_H */

@@ -1,11 +1,11 @@
 /* emit_uniform.h — the `uniform` emission strategy (DESIGN.md §3.1, the paper's "no optimisation").
  *
- * One Philox block per path: its first 32 bits (or the batch's lattice, lib/emit_source.h
- * emission_pick_bits) pick an entry of the source table (the sun or a sky cell), the other 96
- * bits give four 24-bit uniforms for the direction and the origin. Origin: uniform on the disk of radius R orthogonal to the direction that
- * covers the scene's bounding sphere, moved back outside it. The weight is the emitted radiance
- * over the density of (origin, direction): for the sun E pi R^2 / P(sun), for the sky
- * pi R^2 g / p(v) = pi R^2 factor_k sin(theta).
+ * One Philox block per path (lib/emit_source.h uniform_line): its first 32 bits (or the batch's
+ * lattice) pick an entry of the source table (the sun or a sky cell), the other 96 bits give four
+ * 24-bit uniforms for the direction and the origin. Origin: uniform over the silhouette, seen
+ * along the direction, of the box that bounds the scene (area A(v)), moved back outside the
+ * bounding sphere. The weight is the emitted radiance over the density of (origin, direction):
+ * for the sun E A(v) / P(sun), for the sky A(v) g / p(v) = A(v) factor_k sin(theta).
  * Host half: host/emission/uniform_strategy.h.
  */
 #ifndef FEN_EMIT_UNIFORM_H
@@ -49,14 +49,8 @@ static inline int emit_uniform(const global RenderParams* params, const UniformE
 {
     path_start(p, path);
     const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT);
-    const float4 u = rng_unit24x4(bits.y, bits.z, bits.w);
-    const uint entry = alias_pick(e->sources.alias, e->sources.params->alias_shift,
-                                  emission_pick_bits(params, path, bits.x, e->sources.params->alias_shift));
-    float3 weight;
-    const float3 dir = source_direction(params, &e->sky, e->sources.params, entry, u.z, u.w, &weight);
-    float3 t1, t2;
-    orthonormal_basis(dir, &t1, &t2);
-    p->org = (float4)(disk_ray_origin(params, dir, t1, t2, sample_disk(u.x, u.y)), 0.0f);
+    float3 dir, weight;
+    p->org = (float4)(uniform_line(params, &e->sources, &e->sky, path, bits, &dir, &weight), 0.0f);
     p->dir = (float4)(dir, 0.0f);
     p->beta = (float4)(weight, 0.0f);
     return 1;

@@ -46,14 +46,20 @@
 FEN_NS_BEGIN
 
 typedef struct {
-    fen_float4 sun_weight; /* rgb: weight of a sun path: E / P(sun), times pi R^2 for `uniform` */
-    fen_f32 sky_scale;     /* a sky path's weight is factor_k sin(theta) times this (pi R^2, or 1) */
+    fen_float4 sun_weight; /* rgb: weight of a sun path, E / P(sun); the strategy multiplies in its
+                              geometric part (for `uniform` the silhouette area below) */
+    fen_float4 box_min;    /* `uniform`: the emission box's lowest corner (m), w 0 ... */
+    fen_float4 box_size;   /* ... and its extent (m), w 0: paths enter it uniformly over its
+                              silhouette (lib/emit_source.h box_line_origin); zero for a table
+                              that starts no uniform path */
     fen_u32 alias_shift;   /* the source alias table has 2^(32 - shift) columns */
     fen_u32 pad0;
     fen_u32 pad1;
+    fen_u32 pad2;
 } SourceParams;
-FEN_ASSERT_SIZE(SourceParams, 32);
-FEN_ASSERT_OFFSET(SourceParams, sky_scale, 16);
+FEN_ASSERT_SIZE(SourceParams, 64);
+FEN_ASSERT_OFFSET(SourceParams, box_size, 32);
+FEN_ASSERT_OFFSET(SourceParams, alias_shift, 48);
 
 typedef struct {
     fen_u32 groups;      /* portal plane groups */

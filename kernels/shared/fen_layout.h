@@ -48,7 +48,7 @@
     X(SplitState, normal)    \
     X(SplitState, depth)     \
     X(SplitState, path_hi)   \
-    X(SourceParams, sky_scale) \
+    X(SourceParams, box_size) \
     X(SourceParams, alias_shift) \
     X(PortalParams, overlap) \
     X(PortalParams, complement) \

@@ -236,7 +236,7 @@ std::vector<double> emittedLuminances(ocl::Context& ctx, const Scene& scene, con
     p.sky_theta_nodes = sky.thetaNodes;
     p.sky_phi_nodes = sky.phiNodes;
     p.seed = 3;
-    const dev::SourceParams sp = sourceParams(pe.sources, pe.sunWeight, 1.0);
+    const dev::SourceParams sp = sourceParams(pe.sources, pe.sunWeight);
     dev::PortalParams pp{};
     pp.groups = static_cast<std::uint32_t>(pe.groups.size());
     pp.overlap = overlap;
