@@ -150,7 +150,8 @@ struct Renderer::Impl {
     // learning strategy's pass must see every column of its table, as its statistics assume.
     void setPickLattice(std::uint64_t first, std::uint64_t n)
     {
-        dev::RngBlock ctr{static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(first >> 32), 0u, 6u};
+        dev::RngBlock ctr{static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(first >> 32), 0u,
+                          FEN_RNG_PICK_LATTICE};
         const std::uint32_t offset = dev::fen_philox4x32_10(ctr, settings.seed, 0x1a771ceu).x;
         const double step = std::ldexp(1.0, 32) / static_cast<double>(std::max<std::uint64_t>(n, 1));
         wavefront->setPickLattice(offset, static_cast<std::uint32_t>(std::clamp(std::round(step), 1.0, 4294967295.0)));

@@ -7,14 +7,7 @@
 #ifndef FEN_LIB_RNG_H
 #define FEN_LIB_RNG_H
 
-#include "shared/fen_rng.h"
-
-#define FEN_RNG_EMIT 0u     /* source and sky cell (32 bits), direction and disk origin (4 x 24) */
-#define FEN_RNG_EMIT_PORTAL 4u /* portal triangle (32 bits), point on it, overlap rejection */
-#define FEN_RNG_SCATTER 2u  /* glass choice, scattering direction, Russian roulette */
-#define FEN_RNG_CAMERA 3u   /* camera pass: position in the pixel */
-#define FEN_RNG_GUIDE 5u    /* first-bounce guide: box (32 bits), point in it (2 x 32) */
-/* 6: taken on the host -- each run's table-pick lattice offset (render/renderer.cpp setPickLattice) */
+#include "shared/fen_rng.h" /* also the purposes FEN_RNG_*, one list for host and device */
 
 static inline RngBlock rng_bits(uint seed, uint stream, uint c0, uint c1, uint c2, uint purpose)
 {

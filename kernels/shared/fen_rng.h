@@ -21,6 +21,15 @@
 #define FEN_MULHI32(a, b) ((fen_u32)(((fen_u64)(a) * (fen_u64)(b)) >> 32))
 #endif
 
+/* The purpose word of a counter (its last 32 bits): what the numbers are for. One list for host
+   and device, so that no two uses of one (seed, path) draw the same block. */
+#define FEN_RNG_EMIT 0u         /* source and sky cell (32 bits), direction and origin (4 x 24) */
+#define FEN_RNG_SCATTER 2u      /* glass choice, scattering direction, Russian roulette */
+#define FEN_RNG_CAMERA 3u       /* camera pass: position in the pixel */
+#define FEN_RNG_EMIT_PORTAL 4u  /* portal triangle (32 bits), point on it, overlap rejection */
+#define FEN_RNG_GUIDE 5u        /* first-bounce guide: box (32 bits), point in it (2 x 32) */
+#define FEN_RNG_PICK_LATTICE 6u /* host: each run's table-pick lattice offset (render/renderer.cpp) */
+
 FEN_NS_BEGIN
 
 typedef struct {
