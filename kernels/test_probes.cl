@@ -57,7 +57,6 @@ kernel void spawn_probe(global const float4* tri, global const float2* bary,
 #include "lib/rng.h"
 #include "lib/sampling.h"
 #include "lib/sky.h"
-#include "lib/emit_source.h"
 
 /* out[i].xyz = a sample of routine `kind` from the i-th counter-based random quadruple:
    0 disk (x, y), 1 cosine hemisphere about +y, 2 cone about +y with cos_max = a,
@@ -137,19 +136,4 @@ kernel void divsqrt_probe(global const float* a, global const float* b, global f
         return;
     out[2 * i] = a[i] / b[i];
     out[2 * i + 1] = sqrt(a[i]);
-}
-
-/* out[i].xyz = the origin of the i-th `uniform` line along dir (lib/emit_source.h
-   box_line_origin, from the i-th counter-based pair of uniforms), .w = the silhouette area it
-   reports. */
-kernel void box_line_probe(global const RenderParams* params, global const SourceParams* src, float dx,
-                           float dy, float dz, global float4* out, uint n, uint seed)
-{
-    const uint i = get_global_id(0);
-    if (i >= n)
-        return;
-    const float4 u = rng_floats(seed, 0x13579bdu, i, 0, 0, 0);
-    float area;
-    const float3 o = box_line_origin(params, src, (float3)(dx, dy, dz), u.x, u.y, &area);
-    out[i] = (float4)(o, area);
 }

@@ -456,7 +456,7 @@ def slit_scene(path):
 
     Room x in [0, 4], z in [0, 4], slit x in [1.99, 2.01], y in [0.8, 1.8] in the wall z = 4. No
     ground and nothing else outside: every path that lights the room passes the slit, which takes
-    about 1/1000 of the emission disk's area. The sun due south at altitude 30 deg, 70 klux, draws
+    about 1/1000 of the silhouette of the scene's box that uniform emission draws its lines through. The sun due south at altitude 30 deg, 70 klux, draws
     a narrow stripe on the floor (z from about 0.9 to 2.6); a CIE clear sky (type 12) for it,
     zenith luminance 3500 cd/m^2. Floor (0.35, 0.3, 0.25), walls 0.7, ceiling 0.8. The camera in
     the north-west corner looks at the stripe.

@@ -444,10 +444,10 @@ struct Box {
     }
 };
 
-// Uniform emission starts paths on a disk as wide as the scene's bounding sphere, so a node far
-// from the rest (one triangle a thousand kilometres away) or much larger than it (a ground plane
-// kilometres wide) leaves the part the camera sees a tiny share of the paths: the interior goes
-// dark and noisy. Warned about, naming the node, when
+// Uniform emission starts paths over the silhouette of the scene's bounding box (adaptive's disk
+// covers its bounding sphere), so a node far from the rest (one triangle a thousand kilometres
+// away) or much larger than it (a ground plane kilometres wide) leaves the part the camera sees a
+// tiny share of the paths: the interior goes dark and noisy. Warned about, naming the node, when
 //  (1) the bounding box of all geometry is more than kDominance times larger in diameter than
 //      the box of the geometry outside the node's subtree (a node is taken with its descendants,
 //      so that a far object built of several nodes is found by its root), and

@@ -107,14 +107,17 @@ static inline float3 box_line_origin(const global RenderParams* params, const gl
     *area = a.x + a.y + a.z;
     float s = u1 * *area;
     float3 x;
-    /* the entry face normal to axis k is at lo_k when the light travels towards +k */
-    if (s < a.x) {
-        x = (float3)(dir.x > 0.0f ? lo.x : lo.x + e.x, lo.y + e.y * (s / a.x), lo.z + e.z * u2);
-    } else if ((s -= a.x) < a.y) {
-        x = (float3)(lo.x + e.x * u2, dir.y > 0.0f ? lo.y : lo.y + e.y, lo.z + e.z * (s / a.y));
+    /* the entry face normal to axis k is at lo_k when the light travels towards +k. Rounding of
+       the sum can carry s past the last face with a share: a face parallel to dir (a zero share)
+       is never drawn, the last one with a share is, at its far edge (the clamps: no 0/0) */
+    if (s < a.x || (a.y == 0.0f && a.z == 0.0f)) {
+        const float v = fmin(s / fmax(a.x, FLT_MIN), 1.0f);
+        x = (float3)(dir.x > 0.0f ? lo.x : lo.x + e.x, lo.y + e.y * v, lo.z + e.z * u2);
+    } else if ((s -= a.x) < a.y || a.z == 0.0f) {
+        const float v = fmin(s / a.y, 1.0f);
+        x = (float3)(lo.x + e.x * u2, dir.y > 0.0f ? lo.y : lo.y + e.y, lo.z + e.z * v);
     } else {
-        /* rounding can leave s a hair past a.z, or a.z zero with s zero: clamp, no 0/0 */
-        const float v = fmin((s - a.y) / fmax(a.z, FLT_MIN), 1.0f);
+        const float v = fmin((s - a.y) / a.z, 1.0f);
         x = (float3)(lo.x + e.x * v, lo.y + e.y * u2, dir.z > 0.0f ? lo.z : lo.z + e.z);
     }
     return origin_outside(params, x, dir);

@@ -76,7 +76,8 @@ static inline float sky_eval(const Sky* s, float3 to_sky)
 }
 
 /* A direction towards the sky in cell k with the density above; *weight = factor[k] sin(theta),
-   the path weight per unit of pi R^2. */
+   the path weight per unit of the area the strategy's lines are drawn over (uniform: the box's
+   silhouette). */
 static inline float3 sky_sample(const Sky* s, uint k, float u_theta, float u_phi, float* weight)
 {
     const uint i = k / (s->np - 1), j = k % (s->np - 1);

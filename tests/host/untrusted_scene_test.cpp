@@ -643,7 +643,7 @@ TEST(UntrustedScene, FarGeometryIsReported)
 {
     const std::string dir = test::tempDir("untrusted-far");
     {
-        // One triangle a thousand kilometres away widened the emission disk 200,000-fold.
+        // One triangle a thousand kilometres away widened the emission box 200,000-fold.
         test::GltfWriter w = roomWithCamera();
         w.addMeshNode("speck", {{{1e6f, 0, 0}, {1e6f + 1, 0, 0}, {1e6f, 1, 0}}});
         const auto warnings = farWarnings(loadGltf(w.write(dir + "/speck.gltf")));

@@ -1,16 +1,12 @@
 // sampling_test.cpp — the device's sampling routines against their densities (chi-square, fixed
 // seeds, p > 1e-3 required; Mitsuba's test03_chi2 idea), the sky sampler's weights against
-// closed-form integrals (4 sigma of the sample's own standard error), and the `uniform` strategy's
-// lines into the emission box: every one enters it, uniformly over its silhouette, and the source
-// table shares the flux the box receives (DESIGN.md §3.1).
+// closed-form integrals (4 sigma of the sample's own standard error).
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 
 #include "cl/launch.h"
 #include "emission/source_table.h"
-#include "shared/fen_render.h"
 #include "sky/goniogram.h"
 #include "support/cl_fixture.h"
 #include "support/statistics.h"
@@ -178,7 +174,7 @@ struct SkyRun {
     std::vector<float> lum;
 };
 
-// The sky alone (no sun): cells by their integral of g sin(theta), as setupUniformEmission does.
+// The sky alone (no sun): cells by their integral of g sin(theta), every direction's weight g / p.
 struct SkySampler {
     SkyTables t;
     IntegerCdf cdf;
@@ -296,118 +292,6 @@ TEST(Sampling, SkyWeightsIntegrateTheSky)
         EXPECT_NEAR(b.mean, g.illuminance(glm::dvec3(0, 1, 0)), 4.0 * b.se);
         EXPECT_LT(a.se / a.mean, 2e-3) << "the sampler should give nearly constant weights";
     }
-}
-
-// The i-th `uniform` line's origin along `dir` (unit), and the silhouette area the device reports.
-std::vector<cl_float4> runBoxLines(ocl::Context& ctx, const EmissionBox& box, const glm::dvec3& dir,
-                                   std::uint32_t n)
-{
-    dev::RenderParams p{};
-    const glm::dvec3 c = box.min + 0.5 * box.size;
-    p.sphere = {float(c.x), float(c.y), float(c.z), float(0.5 * glm::length(box.size) * 1.001 + 1e-3)};
-    const dev::SourceParams src = sourceParams(makeIntegerCdf({1.0}), glm::dvec3(1.0), &box);
-    cl::Buffer pb = ctx.buffer(CL_MEM_READ_ONLY, sizeof p, "render parameters", &p);
-    cl::Buffer sb = ctx.buffer(CL_MEM_READ_ONLY, sizeof src, "source parameters", &src);
-    cl::Buffer out = ctx.buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "lines");
-    cl::Kernel k(ctx.program("test_probes.cl"), "box_line_probe");
-    ocl::setKernelArgs(k, pb, sb, float(dir.x), float(dir.y), float(dir.z), out, n, std::uint32_t{3});
-    ocl::launch(ctx, k, "box_line_probe", n);
-    std::vector<cl_float4> v(n);
-    ctx.queue().enqueueReadBuffer(out, CL_TRUE, 0, v.size() * 16, v.data());
-    return v;
-}
-
-TEST(Sampling, UniformLinesCoverTheBoxSilhouetteUniformly)
-{
-    FEN_CL_CONTEXT_OR_SKIP(ctx);
-    const EmissionBox box{glm::dvec3(-3.0, 0.0, -4.5), glm::dvec3(6.0, 2.8, 9.0)};
-    const glm::dvec3 hi = box.min + box.size;
-    // Oblique from either side, straight down (one face only), grazing with no z (two faces).
-    for (glm::dvec3 d : {glm::dvec3(0.3, -0.8, 0.52), glm::dvec3(-0.6, -0.3, -0.74), glm::dvec3(0.0, -1.0, 0.0),
-                         glm::dvec3(0.7, -0.1, 0.0)}) {
-        d = glm::normalize(d);
-        const glm::dvec3 dir{glm::vec3(d)};  // as the device sees it
-        const std::uint32_t n = 200000;
-        const auto v = runBoxLines(*ctx, box, dir, n);
-        const double A = box.silhouetteArea(dir);
-        // Where each line enters the box (slabs, in double): the face, and where on it in [0,1)^2.
-        constexpr int kGrid = 8;
-        std::vector<double> obs(3 * kGrid * kGrid, 0.0);
-        std::size_t misses = 0;
-        for (const auto& s : v) {
-            ASSERT_NEAR(s.s[3], A, 1e-5 * A) << "silhouette area along " << d.x << " " << d.y << " " << d.z;
-            const glm::dvec3 o(s.s[0], s.s[1], s.s[2]);
-            double tIn = -INFINITY, tOut = INFINITY;
-            int face = -1;
-            for (int a = 0; a < 3; ++a) {
-                if (dir[a] == 0.0) {
-                    misses += o[a] < box.min[a] || o[a] > hi[a];
-                    continue;
-                }
-                const double t0 = (box.min[a] - o[a]) / dir[a], t1 = (hi[a] - o[a]) / dir[a];
-                if (std::min(t0, t1) > tIn)
-                    tIn = std::min(t0, t1), face = a;
-                tOut = std::min(tOut, std::max(t0, t1));
-            }
-            if (!(tIn > 0.0 && tIn <= tOut + 1e-6 * glm::length(box.size))) {
-                ++misses;
-                continue;
-            }
-            const glm::dvec3 x = o + tIn * dir;
-            const int a1 = (face + 1) % 3, a2 = (face + 2) % 3;
-            auto cell = [&](int a) {
-                return std::clamp(static_cast<int>((x[a] - box.min[a]) / box.size[a] * kGrid), 0, kGrid - 1);
-            };
-            obs[static_cast<std::size_t>((face * kGrid + cell(a1)) * kGrid + cell(a2))] += 1.0;
-        }
-        EXPECT_EQ(misses, 0u) << "every line must enter the box";
-        // Each face by its projected area |d_a| x (its area), uniform on it.
-        std::vector<double> o2, e2;
-        for (int a = 0; a < 3; ++a) {
-            const double share = std::fabs(dir[a]) * box.size[(a + 1) % 3] * box.size[(a + 2) % 3] / A;
-            for (int c = 0; c < kGrid * kGrid; ++c) {
-                const double got = obs[static_cast<std::size_t>(a * kGrid * kGrid + c)];
-                if (share == 0.0) {
-                    EXPECT_EQ(got, 0.0) << "a face the light does not see";
-                    continue;
-                }
-                o2.push_back(got);
-                e2.push_back(n * share / (kGrid * kGrid));
-            }
-        }
-        EXPECT_GT(test::chiSquarePValue(o2, e2), kMinP) << "along " << d.x << " " << d.y << " " << d.z;
-    }
-}
-
-TEST(Sampling, UniformSourcesShareTheFluxIntoTheBox)
-{
-    // The table's sky flux is ∫ A(w) g dw: per axis, the faces' area times the illuminance of a
-    // plane facing each way (Goniogram::illuminance, converged independently of the cell sums);
-    // testSky's cell from 45 to 100 degrees of azimuth straddles the plane z = 0.
-    Scene scene;
-    scene.bounds.grow(glm::vec3(-3.0f, 0.0f, -4.5f));
-    scene.bounds.grow(glm::vec3(3.0f, 2.8f, 4.5f));
-    scene.sun.present = true;
-    scene.sun.illuminanceRgb_lux = glm::dvec3(8e4, 9e4, 1e5);
-    scene.sun.travelDirection = glm::normalize(glm::dvec3(0.3, -0.8, 0.52));
-    const Goniogram g = testSky();
-    const UniformSources u = setupUniformEmission(scene, makeSkyTables(g));
-    const glm::dvec3 s = u.box.size;
-    EXPECT_GT(s.x, 6.0);  // enlarged: geometry on the faces lies inside
-    EXPECT_LT(s.x, 6.0 * 1.001 + 0.01);
-    double sky = 0.0;
-    for (int a = 0; a < 3; ++a) {
-        glm::dvec3 n(0.0);
-        n[a] = 1.0;
-        sky += s[(a + 1) % 3] * s[(a + 2) % 3] * (g.illuminance(n) + g.illuminance(-n));
-    }
-    EXPECT_NEAR(u.skyFlux, sky, 1e-5 * sky);
-    const double sunY = 0.2126 * 8e4 + 0.7152 * 9e4 + 0.0722 * 1e5;
-    EXPECT_NEAR(u.sunFlux, sunY * u.box.silhouetteArea(scene.sun.travelDirection), 1e-9 * u.sunFlux);
-    EXPECT_NEAR(u.pSun, u.sunFlux / (u.sunFlux + u.skyFlux), 1e-6);
-    // A sun path's weight is E / P(sun), times the area on the device: E A / P(sun) on average
-    // over the paths that start at the sun is the sun's flux into the box.
-    EXPECT_NEAR(u.sunWeight.g * u.pSun, 9e4, 1e-6 * 9e4);
 }
 
 TEST(Sampling, FresnelMatchesTheHostFormula)
