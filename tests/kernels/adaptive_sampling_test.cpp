@@ -15,6 +15,7 @@
 #include "emission/adaptive_strategy.h"
 #include "sky/sky_spec.h"
 #include "support/cl_fixture.h"
+#include "support/emit_probe.h"
 #include "support/render_support.h"
 #include "support/statistics.h"
 
@@ -68,36 +69,16 @@ Probe emitPaths(ocl::Context& ctx, const Scene& scene, EmissionMethod base, std:
     Probe out;
     out.realised = strategy->realisedProbabilities();
 
-    dev::RenderParams params{};
+    const dev::RenderParams params = test::emissionParams(scene, tables, 5);
     glm::dvec3 centre;
     double radius;
     emissionSphere(scene, &centre, &radius);
-    params.sphere = {float(centre.x), float(centre.y), float(centre.z), float(radius)};
-    const glm::dvec3 sd = scene.sun.travelDirection;
-    params.sun_dir = {float(sd.x), float(sd.y), float(sd.z), 1.0f};
-    params.seed = 5;
-    params.sky_theta_nodes = tables.thetaNodes;
-    params.sky_phi_nodes = tables.phiNodes;
     out.flux_lm = M_PI * radius * radius * (sunIlluminanceY_lux(scene) + tables.integral_cd_m2_sr);
-
-    cl::Buffer paramsBuf = ctx.buffer(CL_MEM_READ_ONLY, sizeof params, "params", &params);
-    cl::Buffer beta = ctx.buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "beta");
-    cl::Buffer org = ctx.buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "org");
-    cl::Buffer dir = ctx.buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "dir");
     cl::Kernel k(ctx.program("test_adaptive_probes.cl", {"FEN_BVH_WIDTH=8"}), "adaptive_emit_probe");
-    strategy->bindEmitArgs(k, 5);
-    k.setArg(0, paramsBuf);
-    k.setArg(1, beta);
-    k.setArg(2, org);
-    k.setArg(3, dir);
-    k.setArg(4, n);
-    ocl::launch(ctx, k, "adaptive_emit_probe", n);
-    out.beta.resize(n);
-    out.org.resize(n);
-    out.dir.resize(n);
-    ctx.queue().enqueueReadBuffer(beta, CL_FALSE, 0, std::size_t{n} * 16, out.beta.data());
-    ctx.queue().enqueueReadBuffer(org, CL_FALSE, 0, std::size_t{n} * 16, out.org.data());
-    ctx.queue().enqueueReadBuffer(dir, CL_TRUE, 0, std::size_t{n} * 16, out.dir.data());
+    test::EmittedPaths e = test::runEmitProbe(ctx, k, "adaptive_emit_probe", *strategy, params, n);
+    out.beta = std::move(e.beta);
+    out.org = std::move(e.org);
+    out.dir = std::move(e.dir);
     return out;
 }
 

@@ -12,6 +12,7 @@
 #include "render/device_scene.h"
 #include "sky/sky_spec.h"
 #include "support/cl_fixture.h"
+#include "support/emit_probe.h"
 #include "support/render_support.h"
 #include "support/statistics.h"
 #include "support/test_scenes.h"
@@ -226,16 +227,7 @@ TEST(PortalSampling, SkyCellsFollowEquation2)
 std::vector<double> emittedLuminances(ocl::Context& ctx, const Scene& scene, const PortalEmission& pe,
                                       const SkyTables& sky, std::uint32_t overlap, std::uint32_t n, bool* kept)
 {
-    dev::RenderParams p{};
-    glm::dvec3 centre;
-    double radius;
-    emissionSphere(scene, &centre, &radius);
-    p.sphere = {float(centre.x), float(centre.y), float(centre.z), float(radius)};
-    p.sun_dir = {float(scene.sun.travelDirection.x), float(scene.sun.travelDirection.y),
-                 float(scene.sun.travelDirection.z), 1.0f};
-    p.sky_theta_nodes = sky.thetaNodes;
-    p.sky_phi_nodes = sky.phiNodes;
-    p.seed = 3;
+    const dev::RenderParams p = test::emissionParams(scene, sky, 3);
     const dev::SourceParams sp = sourceParams(pe.sources, pe.sunWeight);
     dev::PortalParams pp{};
     pp.groups = static_cast<std::uint32_t>(pe.groups.size());

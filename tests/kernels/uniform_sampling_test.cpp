@@ -16,6 +16,7 @@
 #include "sky/goniogram.h"
 #include "sky/sky_spec.h"
 #include "support/cl_fixture.h"
+#include "support/emit_probe.h"
 #include "support/render_support.h"
 #include "support/statistics.h"
 
@@ -188,34 +189,14 @@ TEST(UniformSampling, WeightsCarryTheFluxIntoTheBox)
     auto strategy = makeUniformStrategy({*ctx, scene, tables, g, sky, 8, fixedScale});
     const EmissionBox box = emissionBox(scene);
 
-    dev::RenderParams params{};
+    const dev::RenderParams params = test::emissionParams(scene, tables, 9);
     glm::dvec3 centre;
     double radius;
     emissionSphere(scene, &centre, &radius);
-    params.sphere = {float(centre.x), float(centre.y), float(centre.z), float(radius)};
-    const glm::dvec3 sd = scene.sun.travelDirection;
-    params.sun_dir = {float(sd.x), float(sd.y), float(sd.z), 1.0f};
-    params.seed = 9;
-    params.sky_theta_nodes = tables.thetaNodes;
-    params.sky_phi_nodes = tables.phiNodes;
-
     const std::uint32_t n = 1u << 20;
-    cl::Buffer pb = ctx->buffer(CL_MEM_READ_ONLY, sizeof params, "params", &params);
-    cl::Buffer beta = ctx->buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "beta");
-    cl::Buffer org = ctx->buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "org");
-    cl::Buffer dir = ctx->buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "dir");
     cl::Kernel k(ctx->program("test_uniform_probes.cl"), "uniform_emit_probe");
-    strategy->bindEmitArgs(k, 5);
-    k.setArg(0, pb);
-    k.setArg(1, beta);
-    k.setArg(2, org);
-    k.setArg(3, dir);
-    k.setArg(4, n);
-    ocl::launch(*ctx, k, "uniform_emit_probe", n);
-    std::vector<cl_float4> vb(n), vo(n), vd(n);
-    ctx->queue().enqueueReadBuffer(beta, CL_FALSE, 0, std::size_t{n} * 16, vb.data());
-    ctx->queue().enqueueReadBuffer(org, CL_FALSE, 0, std::size_t{n} * 16, vo.data());
-    ctx->queue().enqueueReadBuffer(dir, CL_TRUE, 0, std::size_t{n} * 16, vd.data());
+    const test::EmittedPaths e = test::runEmitProbe(*ctx, k, "uniform_emit_probe", *strategy, params, n);
+    const auto &vb = e.beta, &vo = e.org, &vd = e.dir;
 
     std::vector<double> y(n);
     std::size_t misses = 0, inside = 0;
