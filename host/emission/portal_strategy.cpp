@@ -30,7 +30,7 @@ public:
         : ctx_(in.ctx), sky_(in.deviceSky), overlap_(settings.overlap), complement_(settings.portalComplement),
           fixedScale_(in.pixelFixedScale),
           pe_(setupPortalEmission(in.scene, in.sky, in.goniogram, settings.portals, in.bvhWidth)),
-          uniform_(setupUniformEmission(in.scene, in.sky))
+          uniform_(setupUniformEmission(in.scene, in.sky, in.goniogram))
     {
         if (!(complement_ >= 0.0 && complement_ <= 0.5))
             throw Error(cat("--portal-complement ", complement_, " must be in 0..0.5"));

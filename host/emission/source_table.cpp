@@ -101,13 +101,6 @@ SkyTables makeSkyTables(const std::optional<Goniogram>& sky)
         for (std::uint32_t j = 0; j + 1 < t.phiNodes; ++j) {
             t.cellSin.push_back(g.cellIntegralSin(i, j));
             t.cellFlat.push_back(g.cellIntegralFlat(i, j));
-            glm::dvec3 absDir;
-            for (int a = 0; a < 3; ++a) {
-                glm::dvec3 n(0.0);
-                n[a] = 1.0;
-                absDir[a] = g.cellClippedIntegral(i, j, n) + g.cellClippedIntegral(i, j, -n);
-            }
-            t.cellAbsDir.push_back(absDir);
             t.integral_cd_m2_sr += t.cellSin.back();
         }
     return t;
@@ -159,22 +152,30 @@ EmissionBox emissionBox(const Scene& scene)
     return box;
 }
 
-UniformSources setupUniformEmission(const Scene& scene, const SkyTables& sky)
+UniformSources setupUniformEmission(const Scene& scene, const SkyTables& sky, const std::optional<Goniogram>& g)
 {
     UniformSources e;
     e.box = emissionBox(scene);
     const glm::dvec3 E = scene.sun.present ? scene.sun.illuminanceRgb_lux : glm::dvec3(0.0);
     e.sunFlux = sunIlluminanceY_lux(scene) * e.box.silhouetteArea(scene.sun.travelDirection);
 
-    // Entry 0: the sun, by its flux into the box; entries 1 + k: sky cells, by theirs,
-    // ∫_cell A(w) g dw = sum_a (area of the faces normal to a) ∫_cell |w_a| g dw.
-    const glm::dvec3 faceArea(e.box.size.y * e.box.size.z, e.box.size.z * e.box.size.x,
-                              e.box.size.x * e.box.size.y);
+    // Entry 0: the sun, by its flux into the box; entries 1 + k: sky cells (k = i (phi nodes - 1)
+    // + j, as in SkyTables), by theirs, ∫_cell A(w) g dw = sum_a (area of the faces normal to a)
+    // ∫_cell |w_a| g dw -- two clipped integrals per cell and axis (about 50 ms for a 34k-cell
+    // CIE sky, so only the strategies that draw uniform lines pay it, not every SkyTables).
+    const glm::dvec3 faceArea = e.box.faceAreas();
     std::vector<double> w{e.sunFlux};
-    for (const glm::dvec3& f : sky.cellAbsDir) {
-        w.push_back(glm::dot(faceArea, f));
-        e.skyFlux += w.back();
-    }
+    for (std::uint32_t i = 0; i + 1 < sky.thetaNodes; ++i)
+        for (std::uint32_t j = 0; j + 1 < sky.phiNodes; ++j) {
+            double flux = 0.0;
+            for (int a = 0; a < 3; ++a) {
+                glm::dvec3 n(0.0);
+                n[a] = 1.0;
+                flux += faceArea[a] * (g->cellClippedIntegral(i, j, n) + g->cellClippedIntegral(i, j, -n));
+            }
+            w.push_back(flux);
+            e.skyFlux += flux;
+        }
     if (e.sunFlux + e.skyFlux <= 0.0)
         w[0] = 1.0;  // no light (or nothing to hit): a table that draws the (zero-weight) sun
     e.sources = makeIntegerCdf(w);

@@ -25,7 +25,6 @@ namespace fen {
 struct SkyTables {
     std::vector<float> theta, phi, values;  // node angles (rad) and luminances (cd/m^2)
     std::vector<double> cellSin, cellFlat;  // per cell: ∫∫ g sin(theta), ∫∫ g (d theta d phi)
-    std::vector<glm::dvec3> cellAbsDir;     // per cell: ∫ |w_a| g dw for each axis a (w unit)
     std::uint32_t thetaNodes = 0, phiNodes = 0, cells = 0;
     double integral_cd_m2_sr = 0.0;         // ∫ g dω over the upper hemisphere
     double maxLuminance_cd_m2 = 0.0;
@@ -65,11 +64,9 @@ IntegerCdf makeIntegerCdf(const std::vector<double>& weight, bool alias = true);
 // the only kind that can meet a triangle.
 struct EmissionBox {
     glm::dvec3 min{0.0}, size{0.0};
-    double silhouetteArea(const glm::dvec3& v) const
-    {
-        return std::fabs(v.x) * size.y * size.z + std::fabs(v.y) * size.z * size.x +
-               std::fabs(v.z) * size.x * size.y;
-    }
+    // The area of a face normal to each axis.
+    glm::dvec3 faceAreas() const { return {size.y * size.z, size.z * size.x, size.x * size.y}; }
+    double silhouetteArea(const glm::dvec3& v) const { return glm::dot(glm::abs(v), faceAreas()); }
 };
 EmissionBox emissionBox(const Scene& scene);
 
@@ -86,7 +83,9 @@ struct UniformSources {
     glm::dvec3 sunWeight{0.0};     // rgb weight of a sun path over A(v): E / P(sun)
 };
 
-UniformSources setupUniformEmission(const Scene& scene, const SkyTables& sky);
+// `sky` and `g` describe the same sky (makeSkyTables(g)); the cells' flux into the box needs the
+// goniogram itself.
+UniformSources setupUniformEmission(const Scene& scene, const SkyTables& sky, const std::optional<Goniogram>& g);
 
 // The sphere every emitted path starts outside of: the scene's bounding sphere, a little larger
 // (rays must start outside it; adaptive's disk must cover every triangle's projection).

@@ -10,7 +10,7 @@ namespace {
 class UniformStrategy final : public EmissionStrategy {
 public:
     explicit UniformStrategy(const EmissionInputs& in)
-        : sky_(in.deviceSky), sources_(setupUniformEmission(in.scene, in.sky))
+        : sky_(in.deviceSky), sources_(setupUniformEmission(in.scene, in.sky, in.goniogram))
     {
         const dev::SourceParams p = sourceParams(sources_.sources, sources_.sunWeight, &sources_.box);
         params_ = in.ctx.buffer(CL_MEM_READ_ONLY, sizeof p, "uniform emission parameters", &p);

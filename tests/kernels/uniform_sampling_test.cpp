@@ -151,7 +151,7 @@ TEST(UniformSampling, SourcesShareTheFluxIntoTheBox)
     scene.sun.illuminanceRgb_lux = glm::dvec3(8e4, 9e4, 1e5);
     scene.sun.travelDirection = glm::normalize(glm::dvec3(0.3, -0.8, 0.52));
     const Goniogram g = unevenSky();
-    const UniformSources u = setupUniformEmission(scene, makeSkyTables(g));
+    const UniformSources u = setupUniformEmission(scene, makeSkyTables(g), g);
     const glm::dvec3 s = u.box.size;
     EXPECT_GT(s.x, 6.0);  // enlarged: geometry on the faces lies inside
     EXPECT_LT(s.x, 6.0 * 1.001 + 0.01);
