@@ -9,6 +9,7 @@
 #include "emission/source_table.h"
 #include "sky/goniogram.h"
 #include "support/cl_fixture.h"
+#include "support/render_support.h"
 #include "support/statistics.h"
 
 namespace fen {
@@ -208,24 +209,10 @@ SkyRun runSky(ocl::Context& ctx, const SkySampler& s, std::uint32_t n)
     return r;
 }
 
-// An uneven table with strong variation, coarse enough that each cell holds many samples.
-Goniogram testSky()
-{
-    std::vector<double> th = {0, 10, 35, 60, 80, 90}, az = {0, 45, 100, 180, 270, 360};
-    std::vector<std::vector<double>> lum;
-    for (std::size_t i = 0; i < th.size(); ++i) {
-        std::vector<double> row;
-        for (std::size_t j = 0; j < az.size(); ++j)
-            row.push_back(i == 0 ? 500.0 : 200.0 + 400.0 * ((i * 7 + (j % 5) * 3) % 5) + 100.0 * i);
-        lum.push_back(row);
-    }
-    return tableSky(th, az, lum, "test table");
-}
-
 TEST(Sampling, SkyDirectionsFollowTheGoniogramCellByCell)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
-    const Goniogram g = testSky();
+    const Goniogram g = test::unevenTableSky();
     const SkySampler sampler(g);
     const SkyTables& t = sampler.t;
     const std::uint32_t n = 400000;
@@ -280,7 +267,7 @@ TEST(Sampling, SkyWeightsIntegrateTheSky)
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     // E[w] = ∫ g dω and E[w cos θ] = ∫ g cos θ dω (horizontal illuminance): the path weights are
     // g/p for the procedure's exact density. 4 sigma of the sample standard error.
-    for (const Goniogram& g : {testSky(), uniformSky(1234.0)}) {
+    for (const Goniogram& g : {test::unevenTableSky(), uniformSky(1234.0)}) {
         const SkyRun r = runSky(*ctx, SkySampler(g), 400000);
         std::vector<double> w, wc;
         for (const auto& s : r.dirWeight) {

@@ -124,33 +124,19 @@ TEST(UniformSampling, LinesCoverTheBoxSilhouetteUniformly)
     }
 }
 
-// An uneven table whose cells from 60 to 130 and from 200 to 300 degrees of azimuth straddle the
-// planes z = 0 (90 and 270 degrees), where |w_z| folds.
-Goniogram unevenSky()
-{
-    std::vector<double> th = {0, 20, 50, 75, 90}, az = {0, 60, 130, 200, 300, 360};
-    std::vector<std::vector<double>> lum;
-    for (std::size_t i = 0; i < th.size(); ++i) {
-        std::vector<double> row;
-        for (std::size_t j = 0; j < az.size(); ++j)
-            row.push_back(i == 0 ? 800.0 : 300.0 + 500.0 * ((i * 5 + (j % 5) * 2) % 4) + 80.0 * i);
-        lum.push_back(row);
-    }
-    return tableSky(th, az, lum, "uneven table");
-}
-
 TEST(UniformSampling, SourcesShareTheFluxIntoTheBox)
 {
     // The table's sky flux is ∫ A(w) g dw: per axis, the faces' area times the illuminance of a
     // plane facing each way (Goniogram::illuminance, which sums F_ij . n over the cells a plane
-    // does not cut; the table sums two clipped integrals per cell and axis).
+    // does not cut; the table sums two clipped integrals per cell and axis); the uneven sky's
+    // cells from 45 to 100 degrees of azimuth straddle the plane z = 0.
     Scene scene;
     scene.bounds.grow(glm::vec3(-3.0f, 0.0f, -4.5f));
     scene.bounds.grow(glm::vec3(3.0f, 2.8f, 4.5f));
     scene.sun.present = true;
     scene.sun.illuminanceRgb_lux = glm::dvec3(8e4, 9e4, 1e5);
     scene.sun.travelDirection = glm::normalize(glm::dvec3(0.3, -0.8, 0.52));
-    const Goniogram g = unevenSky();
+    const Goniogram g = test::unevenTableSky();
     const UniformSources u = setupUniformEmission(scene, makeSkyTables(g), g);
     const glm::dvec3 s = u.box.size;
     EXPECT_GT(s.x, 6.0);  // enlarged: geometry on the faces lies inside

@@ -103,6 +103,19 @@ std::vector<Triangle> rect(glm::vec3 p, glm::vec3 u, glm::vec3 v)
     return {{p, p + u, p + u + v}, {p, p + u + v, p + v}};
 }
 
+Goniogram unevenTableSky()
+{
+    std::vector<double> th = {0, 10, 35, 60, 80, 90}, az = {0, 45, 100, 180, 270, 360};
+    std::vector<std::vector<double>> lum;
+    for (std::size_t i = 0; i < th.size(); ++i) {
+        std::vector<double> row;
+        for (std::size_t j = 0; j < az.size(); ++j)
+            row.push_back(i == 0 ? 500.0 : 200.0 + 400.0 * ((i * 7 + (j % 5) * 3) % 5) + 100.0 * i);
+        lum.push_back(row);
+    }
+    return tableSky(th, az, lum, "test table");
+}
+
 TestRender renderScene(ocl::Context& ctx, const Scene& scene, int width, int height,
                        std::uint64_t paths, std::vector<Roi> rois, std::uint32_t seed, int maxBounces,
                        const std::function<void(RenderSettings&)>& tweak)

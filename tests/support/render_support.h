@@ -36,6 +36,11 @@ private:
 // Rectangle p, p+u, p+u+v, p+v as two triangles.
 std::vector<Triangle> rect(glm::vec3 p, glm::vec3 u, glm::vec3 v);
 
+// A table sky with strong variation and uneven nodes (theta 0, 10, 35, 60, 80, 90; phi 0, 45,
+// 100, 180, 270, 360 degrees), coarse enough that each cell holds many samples; its cells from 45
+// to 100 degrees of azimuth straddle the plane z = 0.
+Goniogram unevenTableSky();
+
 struct TestRender {
     RenderResult result;
     std::optional<Goniogram> sky;
