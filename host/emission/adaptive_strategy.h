@@ -7,9 +7,10 @@
 // sun's cone, or a box of (s, t) = (1 - cos(theta), phi / 2 pi) over the sky, where equal areas
 // are equal solid angles and a direction is drawn uniformly, its radiance g(v) evaluated -- times
 // a box of the origin's 2D parametrisation: its own emission disk (radius R, orthogonal to v,
-// covering the bounding sphere) through the concentric map, and with a portal base the frame of every plane of portal triangles (portal_planes.h). The
-// grid starts with 4^initialSkyDepth sky boxes and the sun, each with 4^initialDepth origin boxes
-// per region, and refines where the light is.
+// covering the bounding sphere) through the concentric map, and with a portal base the frame of
+// every plane of portal triangles (portal_planes.h). The grid starts with 4^initialSkyDepth sky
+// boxes and the sun, each with 4^initialDepth origin boxes per region, and refines where the
+// light is.
 // The base density P_base(cell): over `uniform`, the direction box's flux (the sky's integral over
 // it, the sun's illuminance) times the origin box's area -- `uniform`'s density at the resolution of
 // the boxes; over `portal`, (1 - diskShare) times the flux through each plane's triangles (|v.n|,
