@@ -137,3 +137,13 @@ kernel void divsqrt_probe(global const float* a, global const float* b, global f
     out[2 * i] = a[i] / b[i];
     out[2 * i + 1] = sqrt(a[i]);
 }
+
+/* out[i] = a[i] * b[i]: whether the program flushes denormal operands and results to zero
+   (Context::program builds with -cl-denorms-are-zero; on a CPU each denormal operand otherwise
+   costs a microcode assist). */
+kernel void denormal_probe(global const float* a, global const float* b, global float* out, uint n)
+{
+    const uint i = get_global_id(0);
+    if (i < n)
+        out[i] = a[i] * b[i];
+}

@@ -69,13 +69,14 @@ cl::Program Context::program(const std::string& mainFile, const std::vector<std:
     // the other neighbour. Asked for, both round as IEEE 754 does, on every device that can.
     if (info_.correctlyRoundedDivSqrt)
         options += " -cl-fp32-correctly-rounded-divide-sqrt";
-    // Denormals are flushed to zero, as Embree asks its users to do for speed. On x86 a float3
-    // lives in a 4-lane register whose fourth lane holds whatever was there before -- often an
-    // integer (an index, a flag), which as a float is a denormal -- and every add or multiply
-    // on such a register then takes a microcode assist of ~100 cycles. PoCL sets the CPU's
-    // flush-to-zero and denormals-are-zero modes for programs built with this option: 1.4x the
-    // paths per second of a render (README "Render speed"). What it changes in results: values
-    // below 1.2e-38, which no quantity of a render reaches except by underflow to nothing.
+    // Denormals are flushed to zero, as Embree asks its users to do for speed. perf put a quarter
+    // of a CPU render's samples on plain adds and multiplies of float3 values, the mark of
+    // microcode assists (~100 cycles each): on x86 a float3 lives in a 4-lane register whose
+    // fourth lane keeps whatever bits were there before, and the bits of a small integer read as
+    // a denormal. PoCL sets the CPU's flush-to-zero and denormals-are-zero modes for programs
+    // built with this option (tested: Probes.CpuKernelsFlushDenormals); docs/results/denormals.md
+    // has what it gains. What it changes in results: values below 1.2e-38, which no quantity of a
+    // render reaches except on its way to nothing.
     options += " -cl-denorms-are-zero";
     for (const auto& d : defines)
         options += " -D" + d;
