@@ -20,6 +20,23 @@ namespace {
 
 using namespace fen::dev;
 
+// Runs test_probes.cl's `kernel`(a, b, out, n) over the n pairs a[i], b[i] and returns out, which
+// holds per_item floats for each pair.
+std::vector<float> runPairProbe(ocl::Context& ctx, const char* kernel, const std::vector<float>& a,
+                                const std::vector<float>& b, std::size_t per_item)
+{
+    const auto n = static_cast<std::uint32_t>(a.size());
+    cl::Kernel k(ctx.program("test_probes.cl"), kernel);
+    cl::Buffer da = ctx.buffer(CL_MEM_READ_ONLY, n * 4, "a", a.data());
+    cl::Buffer db = ctx.buffer(CL_MEM_READ_ONLY, n * 4, "b", b.data());
+    cl::Buffer out = ctx.buffer(CL_MEM_WRITE_ONLY, n * per_item * 4, "probe results");
+    ocl::setKernelArgs(k, da, db, out, n);
+    ocl::launch(ctx, k, kernel, n);
+    std::vector<float> device(n * per_item);
+    ctx.queue().enqueueReadBuffer(out, CL_TRUE, 0, device.size() * 4, device.data());
+    return device;
+}
+
 TEST(Probes, SharedStructLayoutMatchesHost)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
@@ -82,15 +99,7 @@ TEST(Probes, DivisionAndSqrtRoundAsOnTheHost)
         a[i] = std::ldexp(1.0f + fen_u32_to_unit(r.x), static_cast<int>(r.y % 64) - 32);
         b[i] = std::ldexp(1.0f + fen_u32_to_unit(r.z), static_cast<int>(r.w % 64) - 32);
     }
-    cl::Program prog = ctx->program("test_probes.cl");
-    cl::Kernel k(prog, "divsqrt_probe");
-    cl::Buffer da = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "a", a.data());
-    cl::Buffer db = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "b", b.data());
-    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 8, "quotients");
-    ocl::setKernelArgs(k, da, db, out, n);
-    ocl::launch(*ctx, k, "divsqrt_probe", n);
-    std::vector<float> device(2 * n);
-    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, device.size() * 4, device.data());
+    const std::vector<float> device = runPairProbe(*ctx, "divsqrt_probe", a, b, 2);
     std::size_t quotients = 0, roots = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
         quotients += device[2 * i] != a[i] / b[i];
@@ -104,26 +113,18 @@ TEST(Probes, CpuKernelsFlushDenormals)
 {
     // Kernels are built with -cl-denorms-are-zero (host/cl/context.cpp): on x86 a float3's spare
     // lane often holds bits that read as a denormal, and arithmetic on it took microcode assists
-    // that cost a uniform render of scenes/room.gltf 30 % of its time. If the option stopped
-    // reaching the CPU's flush modes, renders would slow down with no other symptom; this says so.
+    // that cost a uniform render of scenes/room.gltf 30 % of its time (docs/results/denormals.md).
+    // If the option stopped reaching the CPU's flush modes, renders would slow down with no other
+    // symptom; this says so.
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     if (!ctx->info().isCpu())
         GTEST_SKIP() << ctx->info().label() << " is not a CPU: denormals cost no assists there";
-    const std::uint32_t n = 4;
     const float tiny = std::ldexp(1.0f, -140);  // a denormal operand
     const float small = std::ldexp(1.0f, -70);  // normal, but its square is a denormal
     const std::vector<float> a = {tiny, small, 3.0f, -tiny};
     const std::vector<float> b = {1.0f, small, 0.5f, 1.0f};
     ASSERT_GT(tiny * 1.0f, 0.0f) << "the host itself flushes denormals";
-    cl::Program prog = ctx->program("test_probes.cl");
-    cl::Kernel k(prog, "denormal_probe");
-    cl::Buffer da = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "a", a.data());
-    cl::Buffer db = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "b", b.data());
-    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 4, "products");
-    ocl::setKernelArgs(k, da, db, out, n);
-    ocl::launch(*ctx, k, "denormal_probe", n);
-    std::vector<float> device(n);
-    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, n * 4, device.data());
+    const std::vector<float> device = runPairProbe(*ctx, "denormal_probe", a, b, 1);
     EXPECT_EQ(device[0], 0.0f) << "a denormal operand was not treated as zero";
     EXPECT_EQ(device[1], 0.0f) << "a denormal result was not flushed to zero";
     EXPECT_EQ(device[2], 1.5f);
