@@ -1,6 +1,6 @@
 // bench.cpp — `fenestra bench` (bench.h).
 //
-// Protocol (../notes/performance_targets.md): the same rays on the same triangles for every
+// Protocol (README "Performance (measured)"): the same rays on the same triangles for every
 // tracer; one warm-up round, then `runs` rounds in which every tracer runs once, interleaved, so
 // drift of a shared machine hits all alike; rates are rays / wall second around enqueue + finish
 // (host side, as for Embree); the fenestra/Embree ratio is the median of per-round ratios.
@@ -163,7 +163,7 @@ int runBench(const BenchOptions& opt)
         L.compileSeconds = seconds(t0, Clock::now());
     }
 
-    // --render: the same scene rendered (the procedural ones with an opening cut and lights
+    // --render: the same scene rendered (the procedural ones with a window cut and lights
     // added), every round, so render rays/s and traversal rays/s come from the same run.
     std::unique_ptr<Renderer> renderer;
     std::optional<Goniogram> renderSky;

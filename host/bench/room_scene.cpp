@@ -161,16 +161,23 @@ void makeRenderable(Scene& room)
     out.triangles.clear();
     out.triangleNode.clear();
     out.triangleMaterial.clear();
-    out.materials = {Material{"white", glm::vec3(0.6f)}};
+    Material glass{"glass", glm::vec3(1.0f)};
+    glass.glass = true;
+    glass.transmission = glm::vec3(0.9f);
+    out.materials = {Material{"white", glm::vec3(0.6f)}, glass};
+    // The pane is the wall's own quads inside the window, so it closes the hole exactly (the
+    // quads do not line up with the window's edges); one node, one plane: one portal.
+    out.nodeNames = {"room", "window"};
+    out.nodePortal = {PortalMark::None, PortalMark::Panes};
+    out.nodeParent = {-1, -1};
     for (std::size_t i = 0; i < room.triangles.size(); ++i) {
         const Triangle& t = room.triangles[i];
         const glm::vec3 c = (t.p0 + t.p1 + t.p2) / 3.0f;
         const bool southWall = t.p0.z == zWall && t.p1.z == zWall && t.p2.z == zWall;
-        if (southWall && c.x > x0 && c.x < x1 && c.y > y0 && c.y < y1)
-            continue;
+        const std::uint32_t pane = southWall && c.x > x0 && c.x < x1 && c.y > y0 && c.y < y1;
         out.triangles.push_back(t);
-        out.triangleNode.push_back(0);
-        out.triangleMaterial.push_back(0);
+        out.triangleNode.push_back(pane);
+        out.triangleMaterial.push_back(pane);
     }
     out.sun.present = true;
     out.sun.nodeName = "sun";
@@ -192,7 +199,7 @@ void makeRenderable(Scene& room)
     cam.yfovRad = 60.0 * M_PI / 180.0;
     cam.aspectRatio = 4.0 / 3.0;
     out.cameras = {cam};
-    out.source = room.source + " with an opening";
+    out.source = room.source + " with a window";
     room = std::move(out);
 }
 

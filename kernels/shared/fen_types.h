@@ -2,7 +2,7 @@
  *
  * Compiled by both g++ (host) and the OpenCL C 1.2 compiler (PoCL, NVIDIA). Every struct that
  * crosses the host/device boundary is built only from these types, so its layout is the same
- * on both sides (DESIGN.md §4; ../notes/opencl_on_pocl_and_nvidia.md §3):
+ * on both sides (DESIGN.md §4; README "Kernels and OpenCL"):
  *   - fen_float4 is the 16-byte padded vector; there is deliberately no 3-vector type here,
  *     because OpenCL's float3 is 16 bytes and glm::vec3 is 12.
  *   - no bool, size_t, long, enum or pointer members; 64-bit values are fen_u64.

@@ -121,6 +121,14 @@ TEST(Cli, BenchJsonSmoke)
     EXPECT_EQ(jr["render"]["method"], "uniform");
     EXPECT_EQ(jr["render"]["roulette_depth"], 5);
     EXPECT_GT(jr["render"]["paths"].get<std::uint64_t>(), 0u);
+    // the procedural room's window is a marked portal, so every method benchmarks there
+    const CliRun rp = run("bench --rays 20000 --runs 1 --warmup 0 --no-embree --render "
+                          "--render-method portal --render-paths 20000 --json");
+    ASSERT_EQ(rp.status, 0) << rp.err;
+    const auto jp = nlohmann::json::parse(rp.out);
+    EXPECT_EQ(jp["render"]["method"], "portal");
+    EXPECT_EQ(jp["render"]["scene"], "room (procedural) with a window");
+    EXPECT_GT(jp["render"]["extension_rays"].get<std::uint64_t>(), 0u);
 }
 
 // A minimal valid scene for the render CLI: one plate, a camera, a uniform sky.
