@@ -3,8 +3,8 @@
 // An interior-like scene: a closed 10 x 3 x 8 m box room (x east, y up, z south) whose walls,
 // floor and ceiling are tessellated into ~7 cm quads, plus 50 random axis-aligned boxes
 // (~110k triangles), the scene of the README's traversal targets. Rays are incoherent: origins
-// uniform in free space (inside the room, outside every box), directions uniform on the sphere; occlusion
-// queries are segments between two free-space points.
+// uniform in free space (inside the room, outside every box), directions uniform on the sphere;
+// occlusion queries are segments between two free-space points.
 #pragma once
 
 #include <cstdint>

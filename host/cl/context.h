@@ -1,11 +1,10 @@
 // context.h — one OpenCL device in use: its context, an in-order profiling queue, the programs
 // built for it, and the device time of every named kernel launch.
 //
-// Programs are built from kernels/ (kernel_source.h) with -cl-std=CL1.2 and
-// -cl-denorms-are-zero, and never with -cl-fast-relaxed-math (it makes inf in the slab test
-// undefined). A failed build throws
-// fen::Error carrying the device, the options and the whole compiler log. PoCL keeps compiled
-// kernels in its cache (POCL_CACHE_DIR), so a second run does not recompile.
+// Programs are built from kernels/ (kernel_source.h) with -cl-std=CL1.2 and -cl-denorms-are-zero,
+// and never with -cl-fast-relaxed-math (it makes inf in the slab test undefined). A failed build
+// throws fen::Error carrying the device, the options and the whole compiler log. PoCL keeps
+// compiled kernels in its cache (POCL_CACHE_DIR), so a second run does not recompile.
 #pragma once
 
 #include <chrono>

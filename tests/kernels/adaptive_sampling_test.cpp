@@ -13,6 +13,7 @@
 
 #include "cl/launch.h"
 #include "emission/adaptive_strategy.h"
+#include "io/image.h"
 #include "sky/sky_spec.h"
 #include "support/cl_fixture.h"
 #include "support/emit_probe.h"
@@ -118,7 +119,7 @@ void expectMeanWeightIsTheFlux(const Probe& p, const char* what)
     std::vector<double> y;
     y.reserve(p.beta.size());
     for (const auto& b : p.beta)
-        y.push_back(0.2126 * b.s[0] + 0.7152 * b.s[1] + 0.0722 * b.s[2]);
+        y.push_back(luminance(b.s[0], b.s[1], b.s[2]));
     const auto ms = test::meanAndStdErr(y);
     std::printf("[ adaptive ] %s: mean weight %.6g +- %.3g lm, flux %.6g lm (%+.2f sigma)\n", what,
                 ms.mean, ms.se, p.flux_lm, (ms.mean - p.flux_lm) / ms.se);

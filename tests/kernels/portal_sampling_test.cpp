@@ -9,6 +9,7 @@
 
 #include "cl/launch.h"
 #include "emission/portal_emission.h"
+#include "io/image.h"
 #include "render/device_scene.h"
 #include "sky/sky_spec.h"
 #include "support/cl_fixture.h"
@@ -261,7 +262,7 @@ std::vector<double> emittedLuminances(ocl::Context& ctx, const Scene& scene, con
     *kept = true;
     for (const auto& x : w) {
         *kept = *kept && x.s[3] == 1.0f;
-        y.push_back(0.2126 * x.s[0] + 0.7152 * x.s[1] + 0.0722 * x.s[2]);
+        y.push_back(luminance(x.s[0], x.s[1], x.s[2]));
     }
     return y;
 }

@@ -12,6 +12,7 @@
 #include "cl/launch.h"
 #include "emission/source_table.h"
 #include "emission/uniform_strategy.h"
+#include "io/image.h"
 #include "shared/fen_render.h"
 #include "sky/goniogram.h"
 #include "sky/sky_spec.h"
@@ -148,7 +149,7 @@ TEST(UniformSampling, SourcesShareTheFluxIntoTheBox)
         sky += s[(a + 1) % 3] * s[(a + 2) % 3] * (g.illuminance(n) + g.illuminance(-n));
     }
     EXPECT_NEAR(u.skyFlux, sky, 1e-5 * sky);
-    const double sunY = 0.2126 * 8e4 + 0.7152 * 9e4 + 0.0722 * 1e5;
+    const double sunY = luminance(8e4, 9e4, 1e5);
     EXPECT_NEAR(u.sunFlux, sunY * u.box.silhouetteArea(scene.sun.travelDirection), 1e-9 * u.sunFlux);
     EXPECT_NEAR(u.pSun, u.sunFlux / (u.sunFlux + u.skyFlux), 1e-6);
 }
@@ -189,7 +190,7 @@ TEST(UniformSampling, WeightsCarryTheFluxIntoTheBox)
     for (std::uint32_t i = 0; i < n; ++i) {
         const auto& w = vb[i].s;
         ASSERT_TRUE(std::isfinite(w[0]) && std::isfinite(w[1]) && std::isfinite(w[2])) << "path " << i;
-        y[i] = 0.2126 * w[0] + 0.7152 * w[1] + 0.0722 * w[2];
+        y[i] = luminance(w[0], w[1], w[2]);
         const glm::dvec3 o(vo[i].s[0], vo[i].s[1], vo[i].s[2]), d(vd[i].s[0], vd[i].s[1], vd[i].s[2]);
         inside += glm::length(o - centre) < radius * (1.0 - 1e-6);
         double t = 0.0;
