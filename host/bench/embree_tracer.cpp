@@ -17,7 +17,7 @@ struct EmbreeTracer::Impl {
     RTCScene scene = nullptr;
 };
 
-EmbreeTracer::EmbreeTracer(const std::vector<Triangle>& tris, int threads)
+EmbreeTracer::EmbreeTracer(const std::vector<Triangle>& tris, int threads, bool robust)
     : impl_(std::make_unique<Impl>()), threads_(threads)
 {
     const std::string config = cat("threads=", threads);
@@ -27,6 +27,8 @@ EmbreeTracer::EmbreeTracer(const std::vector<Triangle>& tris, int threads)
     const auto t0 = std::chrono::steady_clock::now();
     impl_->scene = rtcNewScene(impl_->device);
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);
+    if (robust)
+        rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     const std::size_t n = tris.size();
     // Embree reads vertex buffers 16 bytes at a time: the buffer it allocates is padded.

@@ -2,7 +2,9 @@
 //
 // The same triangles and rays as the OpenCL kernels, traced with rtcIntersect1 / rtcOccluded1 on
 // all CPU threads (one contiguous chunk of rays per thread), BVH quality MEDIUM (Embree's
-// default). Compiled only when CMake finds libembree-dev (FEN_HAVE_EMBREE).
+// default). `robust`: RTC_SCENE_FLAG_ROBUST, Embree's watertight mode, the guarantee fenestra's own
+// traversal gives (docs/bvh.md "Robustness"); without it, Embree's fastest. Compiled only when
+// CMake finds libembree-dev (FEN_HAVE_EMBREE).
 #pragma once
 
 #ifdef FEN_HAVE_EMBREE
@@ -17,7 +19,7 @@ namespace fen {
 
 class EmbreeTracer {
 public:
-    EmbreeTracer(const std::vector<Triangle>& tris, int threads);
+    EmbreeTracer(const std::vector<Triangle>& tris, int threads, bool robust);
     ~EmbreeTracer();
     EmbreeTracer(const EmbreeTracer&) = delete;
     EmbreeTracer& operator=(const EmbreeTracer&) = delete;

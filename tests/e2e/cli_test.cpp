@@ -110,6 +110,10 @@ TEST(Cli, BenchJsonSmoke)
         if (l.contains("closest_agreement_with_embree")) {
             EXPECT_GE(l["closest_agreement_with_embree"].get<double>(), 0.9999);
             EXPECT_GE(l["any_agreement_with_embree"].get<double>(), 0.9999);
+            // both Embree modes timed, so both ratios are real numbers
+            EXPECT_GT(l["closest_over_embree_robust"]["median"].get<double>(), 0.0);
+            EXPECT_GT(l["any_over_embree_robust"]["median"].get<double>(), 0.0);
+            EXPECT_GT(j["embree"]["robust"]["closest_mrays_s"]["median"].get<double>(), 0.0);
         }
     }
     EXPECT_GT(j["scene"]["triangles"].get<int>(), 100000);
