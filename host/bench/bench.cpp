@@ -4,8 +4,8 @@
 // tracer; one warm-up round, then `runs` rounds in which every tracer runs once, interleaved, so
 // drift of a shared machine hits all alike; rates are rays / wall second around enqueue + finish
 // (host side, as for Embree); the fenestra/Embree ratio is the median of per-round ratios.
-// Embree runs twice per round: as it comes (its fastest), and with RTC_SCENE_FLAG_ROBUST, whose
-// watertight test is the guarantee fenestra's traversal gives; both ratios are reported.
+// Embree runs twice per round: as it comes (its fastest), and with RTC_SCENE_FLAG_ROBUST, the
+// closest it comes to the watertight traversal fenestra gives; both ratios are reported.
 #include "bench/bench.h"
 
 #include <algorithm>
@@ -65,7 +65,7 @@ struct LayoutRun {
     std::unique_ptr<RayQueries> queries;
     double compileSeconds = 0.0;
     Series closestMrays, anyMrays, closestRatio, anyRatio;
-    Series closestRobustRatio, anyRobustRatio;  // over Embree's robust (watertight) mode
+    Series closestRobustRatio, anyRobustRatio;  // over Embree with RTC_SCENE_FLAG_ROBUST
     double closestAgree = -1.0, anyAgree = -1.0;
 };
 

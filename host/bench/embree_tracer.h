@@ -2,9 +2,10 @@
 //
 // The same triangles and rays as the OpenCL kernels, traced with rtcIntersect1 / rtcOccluded1 on
 // all CPU threads (one contiguous chunk of rays per thread), BVH quality MEDIUM (Embree's
-// default). `robust`: RTC_SCENE_FLAG_ROBUST, Embree's watertight mode, the guarantee fenestra's own
-// traversal gives (docs/bvh.md "Robustness"); without it, Embree's fastest. Compiled only when
-// CMake finds libembree-dev (FEN_HAVE_EMBREE).
+// default). `robust`: RTC_SCENE_FLAG_ROBUST, the mode Embree offers against rays slipping
+// between neighbouring triangles, the closest it comes to the watertight traversal fenestra gives
+// (docs/bvh.md "Robustness"); without it, Embree's fastest. Compiled only when CMake finds
+// libembree-dev (FEN_HAVE_EMBREE).
 #pragma once
 
 #ifdef FEN_HAVE_EMBREE

@@ -25,8 +25,8 @@ typedef struct {
     float sx, sy, sz;
 } RayPre;
 
-/* 1/x per lane, with x = 0 treated as a tiny number of the same sign (-0 as negative). One vector
-   division: three scalar ones in a row were most of ray_setup's time on a CPU. */
+/* 1/x per lane, with x = 0 treated as a tiny number of the same sign (-0 as negative), as one
+   vector division (docs/bvh.md: with the shear's, two divisions per ray where PoCL made four). */
 static inline float3 fen_safe_rcp3(float3 x)
 {
     const float3 tiny = (float3)(1e-30f);
@@ -69,7 +69,7 @@ static inline RayPre ray_setup(float3 org, float3 dir, float tmin, float tmax, i
     r.kx = kx;
     r.ky = ky;
     r.kz = kz;
-    /* the shear in one vector division too; dz is the dominant axis (|dz| > tiny for any
+    /* the shear as one vector division too; dz is the dominant axis (|dz| > tiny for any
        direction but zero), so 1/dz is idir's lane kz, bit for bit */
     const float2 s = (float2)(fen_axis(dir, kx), fen_axis(dir, ky)) / (float2)(dz);
     r.sx = s.x;
