@@ -132,6 +132,27 @@ std::vector<Triangle> spatialHull(const std::vector<glm::dvec3>& pts, const std:
 
 }  // namespace
 
+bool PortalSet::singlePlane() const
+{
+    if (groups.size() != 1 || triangles.empty())
+        return false;
+    const glm::dvec3 n = groups[0].normal;
+    const double d0 = glm::dot(n, glm::dvec3(triangles[0].p0));
+    glm::dvec3 lo(triangles[0].p0), hi(triangles[0].p0);
+    double dmin = d0, dmax = d0;
+    for (const auto& t : triangles)
+        for (const glm::vec3* p : {&t.p0, &t.p1, &t.p2}) {
+            const glm::dvec3 q(*p);
+            lo = glm::min(lo, q);
+            hi = glm::max(hi, q);
+            const double d = glm::dot(n, q);
+            dmin = std::min(dmin, d);
+            dmax = std::max(dmax, d);
+        }
+    const glm::dvec3 e = hi - lo;
+    return dmax - dmin <= 1e-6 * std::max({e.x, e.y, e.z});
+}
+
 double PortalSet::projectedArea(const glm::dvec3& v) const
 {
     double s = 0.0;

@@ -33,6 +33,10 @@ struct PortalSet {
     double area_m2_total = 0.0;
     // Sum over portal triangles of area * |v . n| for unit v (m^2): eq. (1)'s normaliser.
     double projectedArea(const glm::dvec3& v) const;
+    // Whether every triangle lies in one plane (one group, every vertex within 1e-6 of the set's
+    // extent of it): then a line off the plane crosses at most one of them, so every emitted line
+    // has N(x, v) = 1 and portal emission need not count (lib/emit_portal.h).
+    bool singlePlane() const;
 };
 
 // The portal set of `scene`: its marking, or `override` (comma-separated node names) when not

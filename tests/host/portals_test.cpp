@@ -84,6 +84,25 @@ TEST(Portals, MarkingGroupsByPlane)
                         1.0, 1e-9);
 }
 
+TEST(Portals, SinglePlaneOnlyWhenEveryTriangleIsInIt)
+{
+    // Portal emission skips counting N(x, v) when no line can cross two portal triangles: two
+    // panes in the plane z = 3 qualify; a parallel pane a millimetre behind, or one on another
+    // wall, does not.
+    const Scene scene = twoWindows();
+    EXPECT_TRUE(collectPortals(scene, "south,south_b").singlePlane());
+    EXPECT_TRUE(collectPortals(scene, "east").singlePlane());
+    EXPECT_FALSE(collectPortals(scene, "south,east").singlePlane());
+    test::SceneBuilder b;
+    const int glass = b.material("glass", glm::vec3(0.5f));
+    b.add("front", rect({0, 0, 3}, {1, 0, 0}, {0, 1, 0}), glass, PortalMark::Panes);
+    b.add("back", rect({0, 0, 3.001f}, {1, 0, 0}, {0, 1, 0}), glass, PortalMark::Panes);
+    const Scene doubled = b.build();
+    EXPECT_EQ(collectPortals(doubled, "").groups.size(), 1u);  // one orientation, two planes
+    EXPECT_FALSE(collectPortals(doubled, "").singlePlane());
+    EXPECT_TRUE(collectPortals(doubled, "front").singlePlane());
+}
+
 TEST(Portals, OverrideAndErrors)
 {
     const Scene scene = twoWindows();

@@ -319,6 +319,35 @@ TEST(PortalSampling, EmittedWeightsCarryTheFluxThroughEveryPlane)
     EXPECT_LT(ms.se / ms.mean, 3e-3);
 }
 
+TEST(PortalSampling, OnePlaneNeedsNoCount)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Portals in one plane (a window of 3 x 2 panes, shared edges and corners included): every
+    // emitted line crosses exactly one portal triangle, so the portal strategy skips counting
+    // N(x, v) there (PortalSet::singlePlane). Rejection with the count must then keep every
+    // candidate and give the weights emission without it gives, bit for bit.
+    test::SceneBuilder b;
+    const int m = b.material("m", glm::vec3(0.5f));
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 2; ++j)
+            b.add(cat("pane", i, j), rect({0.5f * static_cast<float>(i), 1 + 0.6f * static_cast<float>(j), 0},
+                                         {0.5f, 0, 0}, {0, 0.6f, 0}),
+                  m, PortalMark::Panes);
+    b.add("floor", rect({-3, 0, -3}, {6, 0, 0}, {0, 0, 6}), m);
+    b.sun(35.0, 150.0, 40000.0);
+    b.cieSky(8, 2500.0, 35.0, 150.0);
+    b.camera({0, 1, 2}, {0, 1, 0}, {0, 1, 0}, 60.0);
+    const Scene scene = b.build();
+    const PortalTables t = portalTables(scene);
+    ASSERT_TRUE(t.pe.portals.singlePlane());
+    bool keptCounted = false, keptSkipped = false;
+    const auto counted = emittedLuminances(*ctx, scene, t.pe, t.tables, FEN_OVERLAP_REJECT, 1u << 18, &keptCounted);
+    const auto skipped = emittedLuminances(*ctx, scene, t.pe, t.tables, FEN_OVERLAP_NONE, 1u << 18, &keptSkipped);
+    EXPECT_TRUE(keptCounted) << "a line crossed two triangles of one plane";
+    EXPECT_TRUE(keptSkipped);
+    EXPECT_EQ(counted, skipped);
+}
+
 TEST(PortalSampling, OverlapCountsEveryPortalOnTheLine)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
