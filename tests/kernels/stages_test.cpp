@@ -10,6 +10,7 @@
 
 #include "cl/launch.h"
 #include "emission/first_bounce_guide.h"
+#include "io/image.h"
 #include "render/camera_setup.h"
 #include "render/device_scene.h"
 #include "shared/fen_render.h"
@@ -224,7 +225,7 @@ TEST(Stages, ContributionsFeedTheEmissionCellTheyCameFrom)
             continue;
         const std::uint32_t part = asUint(c.value.w);
         ASSERT_LT(part, 3u) << "the connection lost its cell";
-        const double y = 0.2126 * c.value.x + 0.7152 * c.value.y + 0.0722 * c.value.z;
+        const double y = luminance(c.value.x, c.value.y, c.value.z);
         sum[part] += y * scale;
         sumSq[part] += y * y * scaleSq;
         n[part] += 1.0;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/image.h"
 #include "support/cl_fixture.h"
 #include "support/render_support.h"
 
@@ -18,7 +19,7 @@ using test::rect;
 
 constexpr double kSigmas = 4.0;
 
-double Y(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+double Y(glm::vec3 c) { return luminance(c.r, c.g, c.b); }
 
 void expectClean(const RenderResult& r)
 {
