@@ -202,8 +202,10 @@ int runBench(const BenchOptions& opt)
     const bool embreeMissing = opt.embree;
 #endif
     Series embreeClosest, embreeAny, robustClosest, robustAny;
-    std::vector<dev::Hit> embreeHits;
-    std::vector<std::uint32_t> embreeOcc;
+    // Results of each Embree scene, kept across rounds: closest()/any() resize them, and a fresh
+    // vector each round would put its allocation and page faults inside the timed call.
+    std::vector<dev::Hit> embreeHits, robustHits;
+    std::vector<std::uint32_t> embreeOcc, robustOcc;
 
     auto timeDevice = [&](auto&& enqueue) {
         const auto t0 = Clock::now();
@@ -232,8 +234,6 @@ int runBench(const BenchOptions& opt)
         };
         if (embree) {
             timeEmbree(*embree, embreeHits, embreeOcc, eC, eA, embreeClosest, embreeAny);
-            std::vector<dev::Hit> robustHits;
-            std::vector<std::uint32_t> robustOcc;
             timeEmbree(*embreeRobust, robustHits, robustOcc, rC, rA, robustClosest, robustAny);
         }
 #endif
