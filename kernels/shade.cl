@@ -14,7 +14,7 @@
 static inline uint shade_one(uint i, global const RenderParams* params, const Guide* guide,
                              global PathState* paths,
                              global SplitState* splits, global const SurfaceHit* hits,
-                             global const uint* prim_material, global const DevMaterial* materials,
+                             const SurfaceMaterials* sm,
                              global const DevCamera* cam, global Connection* connections,
                              volatile global ulong* counters)
 {
@@ -31,12 +31,12 @@ static inline uint shade_one(uint i, global const RenderParams* params, const Gu
     int alive = 0;
     if (as_uint(h.normal.w) != FEN_INVALID_ID) {
         Connection c;
-        alive = shade_path(params, guide, &p, &h, prim_material, materials, cam, &c, &s, counters);
+        alive = shade_path(params, guide, &p, &h, sm, cam, &c, &s, counters);
         if (as_uint(c.org.w) != FEN_INVALID_ID)
             connections[i] = c;
     }
     if (!alive)
-        alive = next_branch(params, guide, &p, &s, prim_material, materials, cam, counters);
+        alive = next_branch(params, guide, &p, &s, sm, cam, counters);
     if (!alive) {
         paths[i].flags = 0;
         return 0;
@@ -49,14 +49,16 @@ static inline uint shade_one(uint i, global const RenderParams* params, const Gu
 
 kernel void shade_paths(global const RenderParams* params, global PathState* paths,
                         global SplitState* splits, global const SurfaceHit* hits,
-                        global const uint* prim_material, global const DevMaterial* materials, global const DevCamera* cam,
+                        global const uint* prim_material, global const DevMaterial* materials,
+                        global const float4* prim_uv, global const uint* texels, global const DevCamera* cam,
                         global Connection* connections, global const GuideParams* guide_params,
                         global const uint* guide_tables,
                         volatile global ulong* counters)
 {
     local uint alive_in_group;
     const Guide guide = {guide_params, guide_tables};
-    const uint alive = shade_one(get_global_id(0), params, &guide, paths, splits, hits, prim_material,
-                                 materials, cam, connections, counters);
+    const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
+    const uint alive = shade_one(get_global_id(0), params, &guide, paths, splits, hits, &sm, cam, connections,
+                                 counters);
     group_count_add(counters + FEN_CTR_ALIVE, alive, &alive_in_group);
 }

@@ -112,7 +112,19 @@ std::uint64_t sceneHash(const Scene& s)
         f.value(m.glass);
         f.value(m.transmission);
         f.value(m.ior);
+        if (m.texture >= 0) {  // only then: an untextured scene hashes as before textures existed
+            f.value(m.texture);
+            f.value(m.texCoord);
+        }
     }
+    for (const Texture& t : s.textures) {
+        f.value(t.width);
+        f.value(t.height);
+        f.value(static_cast<int>(t.wrapS) | static_cast<int>(t.wrapT) << 2 | int{t.nearest} << 4);
+        f.add(t.rgb.data(), t.rgb.size());
+    }
+    if (!s.triangleUv.empty())
+        f.add(s.triangleUv.data(), s.triangleUv.size() * sizeof(s.triangleUv[0]));
     for (std::size_t i = 0; i < s.nodeNames.size(); ++i) {
         f.text(s.nodeNames[i]);
         f.value(i < s.nodePortal.size() ? static_cast<int>(s.nodePortal[i]) : -1);

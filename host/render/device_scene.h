@@ -1,5 +1,5 @@
 // device_scene.h — a Scene on an OpenCL device: its BVH (bvh/, trace/), the material of every
-// primitive and the materials (shared/fen_render.h), and the defines every render program needs.
+// primitive and the materials (shared/fen_render.h), their textures, and the defines every render program needs.
 // Stages read a hit triangle's vertices from its BVH packet, so no other copy of the geometry.
 #pragma once
 
@@ -9,9 +9,13 @@
 
 #include "cl/context.h"
 #include "scene/scene.h"
+#include "shared/fen_types.h"
 #include "trace/device_bvh.h"
 
 namespace fen {
+
+// Two texture-coordinate planes per triangle (kernels/lib/texture.h), from Scene::triangleUv.
+std::vector<dev::fen_float4> textureCoordinatePlanes(const Scene& scene);
 
 class DeviceScene {
 public:
@@ -22,16 +26,22 @@ public:
     const FlatBvh& flat() const { return flat_; }
     const cl::Buffer& materials() const { return materials_; }
     const cl::Buffer& primMaterial() const { return primMaterial_; }  // uint per primitive
+    // Base-colour textures (kernels/lib/texture.h): two texture-coordinate planes per primitive,
+    // and the sRGB decode table followed by every texture's texels; placeholders without textures.
+    const cl::Buffer& primUv() const { return primUv_; }
+    const cl::Buffer& texels() const { return texels_; }
     bool hasGlass() const { return hasGlass_; }
+    bool hasTextures() const { return hasTextures_; }
     double bvhBuildSeconds() const { return bvhSeconds_; }
-    // FEN_BVH_WIDTH=..., and FEN_HAS_GLASS when any triangle is glass.
+    // FEN_BVH_WIDTH=..., FEN_HAS_GLASS when any triangle is glass, FEN_HAS_TEXTURES when any
+    // triangle's material has a texture.
     std::vector<std::string> defines() const;
 
 private:
     FlatBvh flat_;
     std::unique_ptr<DeviceBvh> bvh_;
-    cl::Buffer materials_, primMaterial_;
-    bool hasGlass_ = false;
+    cl::Buffer materials_, primMaterial_, primUv_, texels_;
+    bool hasGlass_ = false, hasTextures_ = false;
     double bvhSeconds_ = 0.0;
 };
 

@@ -81,7 +81,8 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     if (mode == KernelMode::Fused) {
         cl_uint a = 0;
         const cl::Buffer* fusedArgs[] = {&paramsBuf_, &counters_, &b.nodes(), &b.packets(),
-                                         &scene.primMaterial(), &scene.materials(), &cameraBuf_,
+                                         &scene.primMaterial(), &scene.materials(), &scene.primUv(),
+                                         &scene.texels(), &cameraBuf_,
                                          &film.accumulators(), &strategy.cellStats(), pixelScale,
                                          &guide->params(), &guide->tables(), &guide->stats()};
         for (const cl::Buffer* buf : fusedArgs)
@@ -93,7 +94,7 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     emit_.setArg(2, paths_);
     ocl::setKernelArgs(intersect_, paths_, hits_, pool, b.nodes(), b.packets());
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
-                       cameraBuf_, connections_, guide->params(), guide->tables(), counters_);
+                       scene.primUv(), scene.texels(), cameraBuf_, connections_, guide->params(), guide->tables(), counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), film.accumulators(), strategy.cellStats(), *pixelScale, guide->stats(),
                        counters_);

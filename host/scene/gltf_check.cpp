@@ -67,6 +67,57 @@ void checkInteger(const json& obj, const char* key, std::uint64_t lo, std::uint6
         throw Error(cat(where, ".", key, ": must be an integer from ", lo, " to ", hi, ", not ", describe(v)));
 }
 
+// The texture references every material makes (textureInfo objects: base colour, metallic-roughness,
+// normal, occlusion, emissive), textures' images and samplers, and the samplers' enumerations:
+// tinygltf would take an index of 2^32 as 0 and an unknown wrap mode as REPEAT.
+void checkTextureIndices(const json& doc, const json& materials, const json& images, const std::string& path)
+{
+    const json& textures = objects(doc, "textures", path);
+    const json& samplers = objects(doc, "samplers", path);
+    auto textureInfo = [&](const json& owner, const char* key, const std::string& where) {
+        const json& info = member(owner, key);
+        if (info.is_null())
+            return;
+        const std::string at = cat(where, ".", key);
+        if (!info.is_object())
+            throw Error(cat(at, ": must be an object, not ", describe(info)));
+        if (!info.contains("index"))
+            throw Error(cat(at, ".index: missing"));
+        checkIndex(info["index"], textures.size(), "textures", at + ".index");
+        checkInteger(info, "texCoord", 0, 7, false, at);
+    };
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        const std::string where = cat(path, ": materials[", i, "]");
+        const json& pbr = member(materials[i], "pbrMetallicRoughness");
+        if (!pbr.is_null() && !pbr.is_object())
+            throw Error(cat(where, ".pbrMetallicRoughness: must be an object, not ", describe(pbr)));
+        if (pbr.is_object()) {
+            textureInfo(pbr, "baseColorTexture", where + ".pbrMetallicRoughness");
+            textureInfo(pbr, "metallicRoughnessTexture", where + ".pbrMetallicRoughness");
+        }
+        for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"})
+            textureInfo(materials[i], key, where);
+    }
+    for (std::size_t i = 0; i < textures.size(); ++i) {
+        const std::string where = cat(path, ": textures[", i, "]");
+        checkIndexMember(textures[i], "source", images.size(), "images", where);
+        checkIndexMember(textures[i], "sampler", samplers.size(), "samplers", where);
+    }
+    for (std::size_t i = 0; i < samplers.size(); ++i) {
+        const std::string where = cat(path, ": samplers[", i, "]");
+        for (const char* key : {"wrapS", "wrapT"}) {
+            const json& v = member(samplers[i], key);
+            if (!v.is_null() && !(isUnsigned(v, 65535) && (v == 10497 || v == 33071 || v == 33648)))
+                throw Error(cat(where, ".", key, ": ", describe(v),
+                                " is not a wrap mode (10497 REPEAT, 33071 CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT)"));
+        }
+        const json& mag = member(samplers[i], "magFilter");
+        if (!mag.is_null() && !(isUnsigned(mag, 65535) && (mag == 9728 || mag == 9729)))
+            throw Error(cat(where, ".magFilter: ", describe(mag), " is not a magnification filter (9728 NEAREST, "
+                                                                  "9729 LINEAR)"));
+    }
+}
+
 // Every index fenestra or tinygltf follows, every size, offset, count and enumeration, read as
 // the 64-bit integer it is written as: tinygltf 2.7 casts indices to int (2^32 becomes 0) and
 // treats a size it cannot read as absent (a byteOffset of -4 or 4.0 becomes 0).
@@ -146,6 +197,7 @@ void checkIndicesAndSizes(const json& doc, const std::string& path)
     }
     for (std::size_t i = 0; i < buffers.size(); ++i)
         checkInteger(buffers[i], "byteLength", 1, any, true, cat(path, ": buffers[", i, "]"));
+    checkTextureIndices(doc, materials, images, path);
     // tinygltf passes an image's bytes on as &buffer.data[byteOffset] without a check of its own
     // (accessors' views are checked where they are read, gltf_load.cpp).
     for (std::size_t i = 0; i < images.size(); ++i) {

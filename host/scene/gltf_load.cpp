@@ -17,6 +17,7 @@
 #include "scene/gltf_check.h"
 #include "scene/json_reader.h"
 #include "scene/scene_files.h"
+#include "scene/texture_image.h"
 #include "util/error.h"
 
 namespace fen {
@@ -111,6 +112,25 @@ public:
         std::memcpy(v, base_ + i * stride_, sizeof v);
         return glm::vec3(v[0], v[1], v[2]);
     }
+    // A TEXCOORD_n element: float, or normalised unsigned byte / short (glTF 2.0, "Meshes").
+    glm::vec2 texcoord(std::size_t i) const
+    {
+        const unsigned char* p = base_ + i * stride_;
+        switch (acc_->componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return glm::vec2(p[0], p[1]) / 255.0f;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            std::uint16_t v[2];
+            std::memcpy(v, p, sizeof v);
+            return glm::vec2(v[0], v[1]) / 65535.0f;
+        }
+        default: {
+            float v[2];
+            std::memcpy(v, p, sizeof v);
+            return glm::vec2(v[0], v[1]);
+        }
+        }
+    }
     std::uint32_t index(std::size_t i) const
     {
         const unsigned char* p = base_ + i * stride_;
@@ -191,10 +211,37 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
     }
     if (idx.size() % 3 != 0)
         throw Error(cat(where, ": ", idx.size(), " indices is not a whole number of triangles"));
+    // A textured material reads the texture by the primitive's TEXCOORD_n.
+    std::vector<glm::vec2> uv;
+    const Material& mat = scene.materials[material];
+    if (mat.texture >= 0) {
+        const std::string key = cat("TEXCOORD_", mat.texCoord);
+        const auto tc = prim.attributes.find(key);
+        if (tc == prim.attributes.end())
+            throw Error(cat(where, ": material '", printable(mat.name), "' has a baseColorTexture read by ", key,
+                            ", which the primitive does not have"));
+        const AccessorView t(m, tc->second, where);
+        const int ct = t.componentType();
+        if (t.type() != TINYGLTF_TYPE_VEC2 ||
+            (ct != TINYGLTF_COMPONENT_TYPE_FLOAT && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+             ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
+            throw Error(cat(t.where(), ": ", key, " must be VEC2 of float or normalised unsigned byte/short"));
+        if (t.count() != p.count())
+            throw Error(cat(t.where(), ": ", key, " has ", t.count(), " elements for ", p.count(), " vertices"));
+        uv.resize(t.count());
+        for (std::size_t i = 0; i < uv.size(); ++i) {
+            uv[i] = t.texcoord(i);
+            if (!std::isfinite(uv[i].x) || !std::isfinite(uv[i].y))
+                throw Error(cat(t.where(), ": element ", i, " of ", key, " is not finite"));
+        }
+    }
     for (std::size_t i = 0; i < idx.size(); i += 3) {
         scene.triangles.push_back({world[idx[i]], world[idx[i + 1]], world[idx[i + 2]]});
         scene.triangleNode.push_back(static_cast<std::uint32_t>(node));
         scene.triangleMaterial.push_back(material);
+        if (!scene.textures.empty())
+            scene.triangleUv.push_back(uv.empty() ? std::array<glm::vec2, 3>{}
+                                                  : std::array<glm::vec2, 3>{uv[idx[i]], uv[idx[i + 1]], uv[idx[i + 2]]});
     }
 }
 
@@ -204,11 +251,83 @@ std::string materialLabel(const tinygltf::Model& m, std::size_t i)
     return name.empty() ? cat("materials[", i, "]") : cat("materials[", i, "] '", printable(name), "'");
 }
 
+// The encoded bytes of each image tinygltf read (its image loader callback keeps them; gltf
+// images are decoded only when a material uses them, texture_image.h).
+struct EncodedImages {
+    std::vector<std::vector<unsigned char>> bytes;  // per glTF image; empty: not read
+    std::vector<char> read;                         // per glTF image: tinygltf passed its bytes on
+};
+
+bool keepEncodedImage(tinygltf::Image*, const int index, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* user)
+{
+    auto* images = static_cast<EncodedImages*>(user);
+    if (index < 0 || size < 0)
+        return false;
+    const auto i = static_cast<std::size_t>(index);
+    if (images->bytes.size() <= i) {
+        images->bytes.resize(i + 1);
+        images->read.resize(i + 1, 0);
+    }
+    images->bytes[i].assign(bytes, bytes + size);
+    images->read[i] = 1;
+    return true;
+}
+
+TextureWrap wrapMode(int gl)
+{
+    return gl == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? TextureWrap::ClampToEdge
+           : gl == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? TextureWrap::MirroredRepeat
+                                                         : TextureWrap::Repeat;
+}
+
+// The Scene::textures index of glTF texture `t` as a base colour, decoding its image the first
+// time a material uses it. Indices were checked as written (gltf_check.cpp).
+int baseColorTexture(const tinygltf::Model& m, int t, const std::string& path, const EncodedImages& images,
+                     std::vector<int>& textureOfGltf, Scene& scene)
+{
+    int& cached = textureOfGltf[static_cast<std::size_t>(t)];
+    if (cached >= 0)
+        return cached;
+    const tinygltf::Texture& tex = m.textures[static_cast<std::size_t>(t)];
+    if (tex.source < 0)
+        throw Error(cat(path, ": textures[", t, "]: has no source image (extensions' image formats are not supported)"));
+    const auto source = static_cast<std::size_t>(tex.source);
+    const tinygltf::Image& img = m.images[source];
+    std::string label = cat("images[", source, "]");
+    if (!img.name.empty())
+        label += cat(" '", printable(img.name), "'");
+    else if (!img.uri.empty() && img.uri.compare(0, 5, "data:") != 0)
+        label += cat(" '", printable(img.uri), "'");
+    const std::string where = cat(path, ": ", label);
+    if (source >= images.read.size() || !images.read[source])
+        throw Error(cat(where, ": could not be read (", img.uri.empty() ? "no data" : "missing or unreadable file",
+                        "), and textures[", t, "] uses it"));
+    Texture texture;
+    texture.name = label;
+    decodeTextureImage(images.bytes[source].data(), images.bytes[source].size(), where, &texture);
+    std::size_t texels = std::size_t(texture.width) * std::size_t(texture.height);
+    for (const Texture& other : scene.textures)
+        texels += std::size_t(other.width) * std::size_t(other.height);
+    if (texels > kMaxTextureTexels)
+        throw Error(cat(where, ": the scene's textures together exceed ", kMaxTextureTexels, " texels"));
+    if (tex.sampler >= 0) {
+        const tinygltf::Sampler& s = m.samplers[static_cast<std::size_t>(tex.sampler)];
+        texture.wrapS = wrapMode(s.wrapS);
+        texture.wrapT = wrapMode(s.wrapT);
+        texture.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+    }
+    scene.textures.push_back(std::move(texture));
+    cached = static_cast<int>(scene.textures.size() - 1);
+    return cached;
+}
+
 // `doc` is the file's JSON as written: the extensions are read from it (json_reader.h).
 std::vector<Material> readMaterials(const tinygltf::Model& m, const nlohmann::json& doc,
-                                    const std::string& path, Scene& scene)
+                                    const std::string& path, const EncodedImages& images, Scene& scene)
 {
     std::vector<Material> out;
+    std::vector<int> textureOfGltf(m.textures.size(), -1);
     for (std::size_t i = 0; i < m.materials.size(); ++i) {
         const tinygltf::Material& src = m.materials[i];
         const std::string where = cat(path, ": ", materialLabel(m, i));
@@ -225,8 +344,11 @@ std::vector<Material> readMaterials(const tinygltf::Model& m, const nlohmann::js
                 mat.albedo[c] = static_cast<float>(bc[static_cast<std::size_t>(c)]);
             }
         }
-        if (src.pbrMetallicRoughness.baseColorTexture.index >= 0)
-            scene.warnings.push_back(cat(where, ": baseColorTexture ignored, baseColorFactor used"));
+        const int texIndex = src.pbrMetallicRoughness.baseColorTexture.index;
+        if (texIndex >= 0) {
+            mat.texture = baseColorTexture(m, texIndex, path, images, textureOfGltf, scene);
+            mat.texCoord = src.pbrMetallicRoughness.baseColorTexture.texCoord;
+        }
         const auto& em = src.emissiveFactor;
         if ((em.size() == 3 && (em[0] > 0.0 || em[1] > 0.0 || em[2] > 0.0)) ||
             src.emissiveTexture.index >= 0)
@@ -257,6 +379,11 @@ std::vector<Material> readMaterials(const tinygltf::Model& m, const nlohmann::js
                 throw Error(cat(r.keyPath("ior"), ": ", v, " must be in [1, 10]"));
             r.rejectUnknownKeys();
             mat.ior = static_cast<float>(v);
+        }
+        if (mat.glass && mat.texture >= 0) {
+            scene.warnings.push_back(cat(where, ": baseColorTexture of a glass material ignored (its "
+                                                "transmittance is transmissionFactor times baseColorFactor)"));
+            mat.texture = -1;
         }
         out.push_back(mat);
     }
@@ -550,11 +677,10 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
 
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
-    // Textures are not used: do not decode images (and do not fail on a missing one).
-    loader.SetImageLoader(
-        [](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
-           int, void*) { return true; },
-        nullptr);
+    // Images are kept encoded, and decoded only when a material's base colour uses them (an
+    // unused or missing image costs nothing and fails nothing).
+    EncodedImages images;
+    loader.SetImageLoader(keepEncodedImage, &images);
     // Every external file tinygltf reads goes through the folder's rule (scene_files.h).
     sceneFolder.install(loader);
     std::string err, warn;
@@ -574,9 +700,11 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
                 c = ';';
         throw Error(cat(path, ": not a valid glTF file: ", msg.empty() ? "unknown error" : printable(msg)));
     }
+    const auto supported = [](const std::string& ext) {
+        return ext == "KHR_materials_transmission" || ext == "KHR_materials_ior" || ext == "KHR_lights_punctual";
+    };
     for (const auto& ext : model.extensionsRequired)
-        if (ext != "KHR_materials_transmission" && ext != "KHR_materials_ior" &&
-            ext != "KHR_lights_punctual")
+        if (!supported(ext))
             throw Error(cat(path, ": requires extension ", printable(ext), ", which fenestra does not support"));
 
     Scene scene;
@@ -586,7 +714,13 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
     scene.nodeParent = checkNodeForest(model, path);
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
         scene.nodeNames[i] = model.nodes[i].name;
-    scene.materials = readMaterials(model, doc, path, scene);
+    std::string ignored;
+    for (const auto& ext : model.extensionsUsed)
+        if (!supported(ext))
+            ignored += (ignored.empty() ? "" : ", ") + printable(ext);
+    if (!ignored.empty())
+        scene.warnings.push_back(cat(path, ": extensions not supported, ignored: ", printable(ignored, 400)));
+    scene.materials = readMaterials(model, doc, path, images, scene);
     if (model.scenes.empty())
         throw Error(cat(path, ": the file has no scene"));
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;

@@ -2,9 +2,10 @@
 //
 // - Geometry: every triangle primitive of the default scene (scene 0 if none is marked), node
 //   transforms (matrix or TRS) applied, metres, +y up.
-// - Materials: baseColorFactor RGB is the albedo (two-sided Lambertian); KHR_materials_transmission
+// - Materials: baseColorFactor RGB times the baseColorTexture (sRGB decoded, by TEXCOORD_n and the
+//   sampler's wrap modes) is the albedo (two-sided Lambertian); KHR_materials_transmission
 //   makes thin glass with T = transmissionFactor * baseColor and KHR_materials_ior (default 1.5).
-//   Textures and emission are ignored with a warning.
+//   Emission is ignored with a warning; so is every extension used that is not one of these.
 // - Sun: the one KHR_lights_punctual directional light; intensity is normal illuminance (lux),
 //   light travels along its node's -z; light.extras.angular_radius_deg (default 0) widens it.
 // - Sky: scenes[i].extras.sky, one of

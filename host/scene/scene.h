@@ -5,6 +5,8 @@
 // triangleMaterial indexes materials; triangleNode indexes nodeNames (and nodePortal).
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,10 +14,23 @@
 
 namespace fen {
 
+// A base-colour texture (glTF texture = image + sampler), decoded to 8-bit sRGB texels. The albedo
+// at a point is baseColorFactor times the texel's linear value (DESIGN.md §1, "Textures").
+enum class TextureWrap : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };  // glTF 10497, 33071, 33648
+struct Texture {
+    std::string name;                  // "images[2] 'floor.png'", for messages
+    int width = 0, height = 0;         // texels; row 0 is the image's top row (glTF's v = 0)
+    std::vector<std::uint8_t> rgb;     // width * height * 3 bytes, sRGB-encoded as in the file
+    TextureWrap wrapS = TextureWrap::Repeat, wrapT = TextureWrap::Repeat;
+    bool nearest = false;              // sampler magFilter NEAREST (9728); else bilinear
+};
+
 // Two-sided Lambertian, or thin glass (DESIGN.md §1).
 struct Material {
     std::string name;
     glm::vec3 albedo{1.0f};        // glTF baseColorFactor RGB (linear); glTF's default is white
+    int texture = -1;              // Scene::textures index of its baseColorTexture, -1: none
+    int texCoord = 0;              // the TEXCOORD_n set the texture is read with
     bool glass = false;            // KHR_materials_transmission with transmissionFactor > 0
     glm::vec3 transmission{0.0f};  // glass: transmissionFactor * baseColorFactor
     float ior = 1.5f;              // KHR_materials_ior
@@ -63,6 +78,10 @@ struct Scene {
     std::vector<PortalMark> nodePortal;        // per glTF node
     std::vector<int> nodeParent;               // per glTF node; -1 for a root (or unknown)
     std::vector<Material> materials;           // never empty once loaded
+    std::vector<Texture> textures;             // base-colour textures that some material uses
+    // Texture coordinates (u, v) of each triangle's three vertices, when any material has a texture
+    // (empty otherwise); zero for a triangle whose material has none.
+    std::vector<std::array<glm::vec2, 3>> triangleUv;
     Sun sun;
     SkySpec sky;
     std::vector<CameraSpec> cameras;           // in scene traversal order

@@ -25,6 +25,7 @@
 kernel void trace_fused(global const RenderParams* params, volatile global ulong* counters,
                         global const BvhNode* nodes, global const TriPacket4* packets,
                         global const uint* prim_material, global const DevMaterial* materials,
+                        global const float4* prim_uv, global const uint* texels,
                         global const DevCamera* cam, volatile global ulong* accum,
                         volatile global ulong* cell_stats, global const float* stats_pixel_scale,
                         global const GuideParams* guide_params, global const uint* guide_tables,
@@ -33,6 +34,7 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
 {
     const FEN_EMITTER_TYPE emitter = FEN_EMITTER_MAKE;
     const Guide guide = {guide_params, guide_tables};
+    const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
     ulong emitted = 0, extension = 0, shadow = 0;
     for (;;) {
         const ulong first = atom_add(counters + FEN_CTR_NEXT_PATH, (ulong)FEN_FUSED_CHUNK);
@@ -53,18 +55,18 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
                 ++extension;
                 const SurfaceHit h = closest_surface(nodes, packets, p.org.xyz, p.dir.xyz);
                 if (as_uint(h.normal.w) == FEN_INVALID_ID) {
-                    if (next_branch(params, &guide, &p, &split, prim_material, materials, cam, counters))
+                    if (next_branch(params, &guide, &p, &split, &sm, cam, counters))
                         continue;
                     break;
                 }
                 Connection c;
-                const int alive = shade_path(params, &guide, &p, &h, prim_material, materials, cam, &c, &split, counters);
+                const int alive = shade_path(params, &guide, &p, &h, &sm, cam, &c, &split, counters);
                 if (as_uint(c.org.w) != FEN_INVALID_ID) {
                     connect_path(params, &c, nodes, packets, prim_material, materials, accum, cell_stats,
                                  stats_pixel_scale, guide_stats, counters);
                     ++shadow;
                 }
-                if (!alive && !next_branch(params, &guide, &p, &split, prim_material, materials, cam, counters))
+                if (!alive && !next_branch(params, &guide, &p, &split, &sm, cam, counters))
                     break;
             }
         }

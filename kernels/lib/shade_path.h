@@ -2,7 +2,8 @@
  * fused kernel (lib/fused_kernel.h) alike:
  *  - thin glass: specular reflection with probability R(theta) (Fresnel, one interface), else
  *    straight through with weight *= T (expected weight R + (1 - R) T, as the model says);
- *  - Lambertian: connect to the pinhole -- if the camera sees this side of the surface, the
+ *  - Lambertian (albedo rho from lib/texture.h: the factor, times the texture where there is one):
+ *    connect to the pinhole -- if the camera sees this side of the surface, the
  *    contribution C = beta (rho/pi) |cos theta_x| / (d^2 A_pix cos^3 theta_c) goes into *c for
  *    lib/connect_path.h to test and splat -- then scatter cosine-weighted on the side the light
  *    arrived at. From interaction params->rr_depth on, Russian roulette: survive with probability
@@ -37,6 +38,7 @@
 #include "lib/rng.h"
 #include "lib/sampling.h"
 #include "lib/scene_access.h"
+#include "lib/texture.h"
 
 /* The diffuse scatter on side n (unit) of a surface of albedo rho: Russian roulette from
    params->rr_depth on, else weight times rho; a cosine-weighted direction. Returns 1 with *next if
@@ -107,14 +109,13 @@ static inline int leave_vertex(global const RenderParams* params, PathState* p, 
    FEN_INVALID_ID when there is none; may split the path (*s). Returns 1 if the path goes on, with
    its next ray in *p. */
 static inline int shade_path(global const RenderParams* params, const Guide* guide, PathState* p,
-                             const SurfaceHit* h,
-                             global const uint* prim_material, global const DevMaterial* materials,
+                             const SurfaceHit* h, const SurfaceMaterials* sm,
                              global const DevCamera* cam, Connection* c, SplitState* s,
                              volatile global ulong* counters)
 {
     c->org.w = as_float(FEN_INVALID_ID);
     const uint prim = as_uint(h->normal.w);
-    const global DevMaterial* m = materials + prim_material[prim];
+    const global DevMaterial* m = sm->materials + sm->prim_material[prim];
     const float3 ng = h->normal.xyz;
     const float offset_m = h->pos.w;
     const float3 x = h->pos.xyz;
@@ -134,7 +135,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
     } else {
         /* the side of the surface the light arrived at */
         const float3 n = dot(dir, ng) < 0.0f ? ng : -ng;
-        const float3 albedo = m->albedo.xyz;
+        const float3 albedo = surface_albedo(sm, m, prim, x);
         float cos_c, dist2;
         const uint pixel = camera_project(cam, x, &cos_c, &dist2);
         if (pixel != FEN_INVALID_ID) {
@@ -184,8 +185,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
    *s, if any -- the scatter at the split vertex with the branch's own random numbers. Returns 1
    with its first ray in *p, 0 when no branch is left to go on. */
 static inline int next_branch(global const RenderParams* params, const Guide* guide, PathState* p,
-                              SplitState* s, global const uint* prim_material,
-                              global const DevMaterial* materials, global const DevCamera* cam,
+                              SplitState* s, const SurfaceMaterials* sm, global const DevCamera* cam,
                               volatile global ulong* counters)
 {
     while (p->flags & FEN_PATH_SPLIT) {
@@ -196,7 +196,8 @@ static inline int next_branch(global const RenderParams* params, const Guide* gu
         p->depth = s->depth;
         p->beta.xyz = s->beta.xyz;
         const float3 x = s->pos.xyz, n = s->normal.xyz;
-        const float3 albedo = materials[prim_material[as_uint(s->normal.w)]].albedo.xyz;
+        const uint prim = as_uint(s->normal.w);
+        const float3 albedo = surface_albedo(sm, sm->materials + sm->prim_material[prim], prim, x);
         const float4 u = rng_path(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_SCATTER);
         float3 next = n;
         const int alive = scatter_first(params, guide, cam, p, albedo, n, u, as_uint(s->beta.w), &next);

@@ -25,6 +25,8 @@
     X(TriPacket4, v)         \
     X(TriPacket4, prim)      \
     X(DevMaterial, transmission) \
+    X(DevMaterial, tex_offset)   \
+    X(DevMaterial, tex_flags)    \
     X(DevCamera, up)         \
     X(DevCamera, width)      \
     X(SurfaceHit, normal)    \

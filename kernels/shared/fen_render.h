@@ -43,12 +43,30 @@
 
 FEN_NS_BEGIN
 
+/* DevMaterial.tex_flags: a base-colour texture (lib/texture.h) and how it is sampled */
+#define FEN_TEX_PRESENT 1u
+#define FEN_TEX_NEAREST 2u      /* magFilter NEAREST; else bilinear */
+#define FEN_TEX_WRAP_S_SHIFT 2u /* 2 bits each: FEN_WRAP_* */
+#define FEN_TEX_WRAP_T_SHIFT 4u
+#define FEN_WRAP_REPEAT 0u
+#define FEN_WRAP_CLAMP 1u
+#define FEN_WRAP_MIRROR 2u
+/* The texel buffer starts with the sRGB decode table: FEN_SRGB_TABLE floats (as uint), the linear
+   value of each 8-bit code; the texels (r | g << 8 | b << 16, sRGB-encoded) follow. */
+#define FEN_SRGB_TABLE 256u
+
 typedef struct {
-    fen_float4 albedo;        /* rgb: Lambertian albedo; w: as_uint kind (FEN_MATERIAL_*) */
+    fen_float4 albedo;        /* rgb: Lambertian albedo (the factor, with a texture); w: as_uint kind (FEN_MATERIAL_*) */
     fen_float4 transmission;  /* rgb: glass transmittance T; w: index of refraction */
+    fen_u32 tex_offset;       /* first texel in the texel buffer (after the decode table) */
+    fen_u32 tex_width;
+    fen_u32 tex_height;
+    fen_u32 tex_flags;        /* FEN_TEX_*; 0: no texture */
 } DevMaterial;
-FEN_ASSERT_SIZE(DevMaterial, 32);
+FEN_ASSERT_SIZE(DevMaterial, 48);
 FEN_ASSERT_OFFSET(DevMaterial, transmission, 16);
+FEN_ASSERT_OFFSET(DevMaterial, tex_offset, 32);
+FEN_ASSERT_OFFSET(DevMaterial, tex_flags, 44);
 
 /* Pinhole camera, box pixel filter. Image plane at unit distance along `forward`. */
 typedef struct {

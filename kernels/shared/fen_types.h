@@ -62,6 +62,13 @@ inline fen_f32 fen_as_float(fen_u32 u)
     std::memcpy(&f, &u, sizeof f);
     return f;
 }
+/* ... and of as_uint: a float's bits, stored in a uint buffer. */
+inline fen_u32 fen_as_uint(fen_f32 f)
+{
+    fen_u32 u;
+    std::memcpy(&u, &f, sizeof u);
+    return u;
+}
 FEN_NS_END
 
 #define FEN_ASSERT_SIZE(T, n) static_assert(sizeof(T) == (n), #T " has the wrong size")

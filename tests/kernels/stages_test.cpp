@@ -84,7 +84,8 @@ struct Stages {
         cl::Kernel shade(ctx.program("shade.cl", defs), "shade_paths");
         cl::Kernel connect(ctx.program("connect.cl", connectDefs), "connect_paths");
         ocl::setKernelArgs(isect, paths, hits, n, ds.bvh().nodes(), ds.bvh().packets());
-        ocl::setKernelArgs(shade, params, paths, splits, hits, ds.primMaterial(), ds.materials(), camBuf, conns,
+        ocl::setKernelArgs(shade, params, paths, splits, hits, ds.primMaterial(), ds.materials(), ds.primUv(),
+                           ds.texels(), camBuf, conns,
                            noGuide.params(), noGuide.tables(), counters);
         ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.primMaterial(),
                            ds.materials(), accum, stats, noScale, noGuide.stats(), counters);
