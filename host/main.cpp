@@ -172,6 +172,7 @@ int main(int argc, char** argv)
                           "How often: N min, N s or N batches (default 10min)");
     renderCmd->add_option("--resume", render.resumePath,
                           "Continue the render saved in this checkpoint (same scene and options)");
+    fen::addSkySunOptions(renderCmd, &render.skySun);
     renderCmd->add_flag("--progress", progressOn, "Show progress even when stderr is not a terminal");
     renderCmd->add_flag("--no-progress", progressOff, "Never show progress");
 

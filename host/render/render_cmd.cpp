@@ -2,6 +2,7 @@
 // (DESIGN.md §5). Every JSON key is documented in README.md ("Render output").
 #include "render/render_cmd.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -18,6 +19,7 @@
 
 #include "cl/device.h"
 #include "io/exr_io.h"
+#include "io/image.h"
 #include "io/output_files.h"
 #include "io/png_preview.h"
 #include "render/camera_setup.h"
@@ -177,6 +179,44 @@ void parseCheckpointEvery(const std::string& text, RenderSettings* s)
     }
 }
 
+// The sun and the sky rendered (after the command line's changes), for the JSON.
+nlohmann::json sunJson(const Sun& sun)
+{
+    if (!sun.present)
+        return nullptr;
+    const glm::dvec3 to = -sun.travelDirection;
+    double az = std::atan2(to.x, -to.z) * 180.0 / M_PI;
+    if (az < 0.0)
+        az += 360.0;
+    const glm::dvec3 e = sun.illuminanceRgb_lux;
+    return {{"altitude_deg", std::asin(std::clamp(to.y, -1.0, 1.0)) * 180.0 / M_PI},
+            {"azimuth_deg", az},
+            {"normal_illuminance_lux", luminance(e.r, e.g, e.b)}};
+}
+
+nlohmann::json skyJson(const SkySpec& spec, const std::optional<Goniogram>& sky)
+{
+    if (spec.type == SkySpec::Type::None || !sky)
+        return nullptr;
+    nlohmann::json j;
+    switch (spec.type) {
+    case SkySpec::Type::Uniform:
+        j = {{"type", "uniform"}, {"luminance_cd_m2", spec.luminance_cd_m2}};
+        break;
+    case SkySpec::Type::Cie:
+        j = {{"type", "cie"},
+             {"cie_type", spec.cieType},
+             {"zenith_luminance_cd_m2", spec.zenithLuminance_cd_m2},
+             {"sun_altitude_deg", spec.sunAltitudeDeg},
+             {"sun_azimuth_deg", spec.sunAzimuthDeg}};
+        break;
+    default:
+        j = {{"type", "table"}};
+    }
+    j["horizontal_illuminance_lux"] = sky->illuminance(glm::dvec3(0.0, 1.0, 0.0));
+    return j;
+}
+
 int runRender(const RenderOptions& opt)
 {
     const auto t0 = std::chrono::steady_clock::now();
@@ -200,8 +240,11 @@ int runRender(const RenderOptions& opt)
     if (!opt.resumePath.empty() && !std::ifstream(opt.resumePath))
         throw Error(cat(opt.resumePath, ": cannot open the checkpoint (--resume): ", std::strerror(errno)));
 
-    const Scene scene = loadGltf(opt.scenePath);
+    Scene scene = loadGltf(opt.scenePath);
+    const SkySunReport skySun = applySkySunOptions(opt.skySun, &scene);
     for (const auto& w : scene.warnings)
+        std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
+    for (const auto& w : skySun.warnings)
         std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
     const CameraSpec& camera = findCamera(scene, opt.camera);
     const std::optional<Goniogram> sky = buildSky(scene.sky);
@@ -311,6 +354,8 @@ int runRender(const RenderOptions& opt)
     nlohmann::json j;
     j["scene"] = scene.source;
     j["camera"] = camera.nodeName.empty() ? camera.cameraName : camera.nodeName;
+    j["sun"] = sunJson(scene.sun);
+    j["sky"] = skyJson(scene.sky, sky);
     j["device"] = ctx.info().label();
     j["method"] = opt.method;
     j["width"] = width;

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "sky/sky_sun_options.h"
+
 namespace fen {
 
 struct RenderOptions {
@@ -58,6 +60,7 @@ struct RenderOptions {
     std::string checkpointPath;     // --checkpoint
     std::string checkpointEvery = "10min";  // --checkpoint-every: N min | N s | N batches
     std::string resumePath;         // --resume
+    SkySunOptions skySun;           // --sky, --sun, ... (sky/sky_sun_options.h)
 };
 
 // Returns the exit status: 0, or 130 when a signal stopped the render early (its outputs are
