@@ -778,13 +778,14 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
             JsonReader r(extras, where + ".extras");
             if (r.has("portal")) {
                 const nlohmann::json& p = r.raw("portal");
-                if (p.is_boolean())
+                // Blender writes a custom property ticked as a boolean, or typed as 1, as either.
+                if (p.is_boolean() || (p.is_number_integer() && (p == 0 || p == 1)))
                     scene.nodePortal[static_cast<std::size_t>(node)] =
-                        p.get<bool>() ? PortalMark::Panes : PortalMark::None;
+                        (p.is_boolean() ? p.get<bool>() : p == 1) ? PortalMark::Panes : PortalMark::None;
                 else if (p.is_string() && p.get<std::string>() == "hull")
                     scene.nodePortal[static_cast<std::size_t>(node)] = PortalMark::Hull;
                 else
-                    throw Error(cat(r.keyPath("portal"), ": must be true, false or \"hull\", not ",
+                    throw Error(cat(r.keyPath("portal"), ": must be true, false (or 1, 0) or \"hull\", not ",
                                     describe(p)));
             }
             r.rejectUnknownKeys();
