@@ -2,6 +2,7 @@
 #include "scene/texture_image.h"
 
 #include <climits>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 
@@ -21,6 +22,18 @@ void decodeTextureImage(const unsigned char* bytes, std::size_t size, const std:
         throw Error(cat(where, ": not a PNG or JPEG image (glTF's two image formats)"));
     int w = 0, h = 0, channels = 0;
     const int n = static_cast<int>(size);
+    // A PNG's size is in its IHDR chunk, read here: stb_image's own check would refuse a large one
+    // only as "unknown image type".
+    if (png && size >= 24 && std::memcmp(bytes + 12, "IHDR", 4) == 0) {
+        const auto be32 = [&](std::size_t at) {
+            return std::uint32_t{bytes[at]} << 24 | std::uint32_t{bytes[at + 1]} << 16 |
+                   std::uint32_t{bytes[at + 2]} << 8 | std::uint32_t{bytes[at + 3]};
+        };
+        const std::uint32_t pw = be32(16), ph = be32(20);
+        if (pw < 1 || ph < 1 || pw > kMaxTextureSide || ph > kMaxTextureSide)
+            throw Error(cat(where, ": ", pw, " x ", ph, " texels; a texture may have 1 to ", kMaxTextureSide,
+                            " a side"));
+    }
     if (!stbi_info_from_memory(bytes, n, &w, &h, &channels))
         throw Error(cat(where, ": unreadable ", png ? "PNG" : "JPEG", " image (", stbi_failure_reason(), ")"));
     if (w < 1 || h < 1 || w > kMaxTextureSide || h > kMaxTextureSide)
