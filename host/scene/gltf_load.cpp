@@ -344,11 +344,6 @@ std::vector<Material> readMaterials(const tinygltf::Model& m, const nlohmann::js
                 mat.albedo[c] = static_cast<float>(bc[static_cast<std::size_t>(c)]);
             }
         }
-        const int texIndex = src.pbrMetallicRoughness.baseColorTexture.index;
-        if (texIndex >= 0) {
-            mat.texture = baseColorTexture(m, texIndex, path, images, textureOfGltf, scene);
-            mat.texCoord = src.pbrMetallicRoughness.baseColorTexture.texCoord;
-        }
         const auto& em = src.emissiveFactor;
         if ((em.size() == 3 && (em[0] > 0.0 || em[1] > 0.0 || em[2] > 0.0)) ||
             src.emissiveTexture.index >= 0)
@@ -380,10 +375,14 @@ std::vector<Material> readMaterials(const tinygltf::Model& m, const nlohmann::js
             r.rejectUnknownKeys();
             mat.ior = static_cast<float>(v);
         }
-        if (mat.glass && mat.texture >= 0) {
+        // Decoded only for a diffuse material: glass ignores its texture (and does not fail on it).
+        const int texIndex = src.pbrMetallicRoughness.baseColorTexture.index;
+        if (texIndex >= 0 && mat.glass) {
             scene.warnings.push_back(cat(where, ": baseColorTexture of a glass material ignored (its "
                                                 "transmittance is transmissionFactor times baseColorFactor)"));
-            mat.texture = -1;
+        } else if (texIndex >= 0) {
+            mat.texture = baseColorTexture(m, texIndex, path, images, textureOfGltf, scene);
+            mat.texCoord = src.pbrMetallicRoughness.baseColorTexture.texCoord;
         }
         out.push_back(mat);
     }
@@ -457,9 +456,17 @@ CameraSpec readCamera(const tinygltf::Model& m, int node, const glm::dmat4& xf, 
     if (cam.type != "perspective")
         throw Error(cat(where, ": camera ", n.camera, " is '", printable(cam.type),
                         "'; only perspective cameras are supported"));
-    if (!(cam.perspective.yfov > 0.0 && cam.perspective.yfov < M_PI))
+    // Below 0.001 degrees a pixel's solid angle underflows what the film can hold (the image
+    // comes out black); beyond 179 the projection degenerates. Aspect ratios beyond 16:1 give
+    // images a pixel high.
+    constexpr double kMinYfov = 0.001 * M_PI / 180.0, kMaxYfov = 179.0 * M_PI / 180.0;
+    if (!(cam.perspective.yfov >= kMinYfov && cam.perspective.yfov <= kMaxYfov))
         throw Error(cat(where, ": camera ", n.camera, ": yfov ", cam.perspective.yfov,
-                        " must be in (0, pi)"));
+                        " rad must be in [", kMinYfov, ", ", kMaxYfov, "] (0.001 to 179 degrees)"));
+    if (cam.perspective.aspectRatio != 0.0 &&
+        !(cam.perspective.aspectRatio >= 1.0 / 16.0 && cam.perspective.aspectRatio <= 16.0))
+        throw Error(cat(where, ": camera ", n.camera, ": aspectRatio ", cam.perspective.aspectRatio,
+                        " must be in [1/16, 16]"));
     CameraSpec c;
     c.nodeName = n.name;
     c.cameraName = cam.name;
@@ -769,8 +776,15 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
                 addPrimitive(model, mesh.primitives[pi], xf, node,
                              cat(where, ", mesh ", n.mesh, ", primitive ", pi), scene);
         }
-        if (n.camera >= 0)
+        if (n.camera >= 0) {
             scene.cameras.push_back(readCamera(model, node, xf, where));
+            // Light paths reach a view in proportion to the surface it sees: a narrow one gets few.
+            const double yfovDeg = scene.cameras.back().yfovRad * 180.0 / M_PI;
+            if (yfovDeg < 1.0)
+                scene.warnings.push_back(cat(where, ": camera ", n.camera, " sees only ", yfovDeg,
+                                             " degrees; light paths reach so narrow a view rarely, and a short "
+                                             "render may come out black or noisy"));
+        }
 
         const nlohmann::json& rawNode = element(member(doc, "nodes"), static_cast<std::size_t>(node));
         const nlohmann::json& extras = member(rawNode, "extras");
