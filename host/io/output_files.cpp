@@ -19,6 +19,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The process's umask (reading it means setting it; set back at once, before any file is made).
+mode_t processUmask()
+{
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    return mask;
+}
+
 std::string errnoText(int e) { return std::strerror(e); }
 
 // A new file next to `path` (same folder: the rename stays within one file system), created
@@ -75,8 +83,9 @@ void OutputFiles::commit()
             }
             if (::close(fd) != 0)
                 throw Error(cat(path, ": cannot write: ", errnoText(errno)));
-            // mkstemp makes the file private; outputs are ordinary files.
-            ::chmod(tmp.c_str(), 0644);
+            // mkstemp makes the file private; outputs are ordinary files, with the permissions the
+            // user's umask gives a new file (as open(2) with 0666 would).
+            ::chmod(tmp.c_str(), 0666 & ~processUmask());
         }
         for (std::size_t i = 0; i < files_.size(); ++i)
             if (std::rename(temporaries[i].c_str(), files_[i].first.c_str()) != 0)

@@ -67,6 +67,53 @@ void checkInteger(const json& obj, const char* key, std::uint64_t lo, std::uint6
         throw Error(cat(where, ".", key, ": must be an integer from ", lo, " to ", hi, ", not ", describe(v)));
 }
 
+// Skins and animations are not used, but every index in them must name something that exists
+// (glTF 2.0; tinygltf would read an index of 2^32 as 0).
+void checkAnimationAndSkinIndices(const json& doc, std::size_t nodes, std::size_t accessors, const std::string& path)
+{
+    const json& skins = objects(doc, "skins", path);
+    for (std::size_t i = 0; i < skins.size(); ++i) {
+        const std::string where = cat(path, ": skins[", i, "]");
+        checkIndexMember(skins[i], "inverseBindMatrices", accessors, "accessors", where);
+        checkIndexMember(skins[i], "skeleton", nodes, "nodes", where);
+        const json& joints = member(skins[i], "joints");
+        if (!joints.is_array())
+            throw Error(cat(where, ".joints: must be an array of node indices, not ", describe(joints)));
+        for (std::size_t k = 0; k < joints.size(); ++k)
+            checkIndex(joints[k], nodes, "nodes", cat(where, ".joints[", k, "]"));
+    }
+    const json& animations = objects(doc, "animations", path);
+    for (std::size_t i = 0; i < animations.size(); ++i) {
+        const std::string where = cat(path, ": animations[", i, "]");
+        const json& samplers = member(animations[i], "samplers");
+        const json& channels = member(animations[i], "channels");
+        if (!samplers.is_array() || !channels.is_array())
+            throw Error(cat(where, ": must have arrays 'samplers' and 'channels'"));
+        for (std::size_t k = 0; k < samplers.size(); ++k) {
+            const std::string at = cat(where, ".samplers[", k, "]");
+            if (!samplers[k].is_object())
+                throw Error(cat(at, ": must be an object, not ", describe(samplers[k])));
+            for (const char* key : {"input", "output"}) {
+                if (!samplers[k].contains(key))
+                    throw Error(cat(at, ".", key, ": missing"));
+                checkIndex(samplers[k][key], accessors, "accessors", cat(at, ".", key));
+            }
+        }
+        for (std::size_t k = 0; k < channels.size(); ++k) {
+            const std::string at = cat(where, ".channels[", k, "]");
+            if (!channels[k].is_object())
+                throw Error(cat(at, ": must be an object, not ", describe(channels[k])));
+            if (!channels[k].contains("sampler"))
+                throw Error(cat(at, ".sampler: missing"));
+            checkIndex(channels[k]["sampler"], samplers.size(), "the animation's samplers", cat(at, ".sampler"));
+            const json& target = member(channels[k], "target");
+            if (!target.is_object())
+                throw Error(cat(at, ".target: must be an object, not ", describe(target)));
+            checkIndexMember(target, "node", nodes, "nodes", at + ".target");
+        }
+    }
+}
+
 // The texture references every material makes (textureInfo objects: base colour, metallic-roughness,
 // normal, occlusion, emissive), textures' images and samplers, and the samplers' enumerations:
 // tinygltf would take an index of 2^32 as 0 and an unknown wrap mode as REPEAT.
@@ -152,12 +199,16 @@ void checkIndicesAndSizes(const json& doc, const std::string& path)
         nodeList(nodes[i], "children", where);
         checkIndexMember(nodes[i], "mesh", meshes.size(), "meshes", where);
         checkIndexMember(nodes[i], "camera", cameras.size(), "cameras", where);
+        checkIndexMember(nodes[i], "skin", objects(doc, "skins", path).size(), "skins", where);
     }
+    checkAnimationAndSkinIndices(doc, nodes.size(), accessors.size(), path);
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         const json& prims = member(meshes[i], "primitives");
         const std::string mesh = cat(path, ": meshes[", i, "].primitives");
         if (!prims.is_array())
             throw Error(cat(mesh, ": must be an array, not ", describe(prims)));
+        if (prims.empty())  // glTF requires one; without, the mesh would vanish without a word
+            throw Error(cat(mesh, ": is empty; a mesh has at least one primitive"));
         for (std::size_t j = 0; j < prims.size(); ++j) {
             const std::string where = cat(mesh, "[", j, "]");
             const json& prim = prims[j];
@@ -169,6 +220,17 @@ void checkIndicesAndSizes(const json& doc, const std::string& path)
             for (auto it = attributes.begin(); it != attributes.end(); ++it)
                 checkIndex(it.value(), accessors.size(), "accessors",
                            cat(where, ".attributes.", printable(it.key(), 60)));
+            // Morph targets are not used, but their accessors must exist (glTF: every index does).
+            const json& targets = member(prim, "targets");
+            if (!targets.is_null() && !targets.is_array())
+                throw Error(cat(where, ".targets: must be an array, not ", describe(targets)));
+            for (std::size_t t = 0; targets.is_array() && t < targets.size(); ++t) {
+                if (!targets[t].is_object())
+                    throw Error(cat(where, ".targets[", t, "]: must be an object, not ", describe(targets[t])));
+                for (auto it = targets[t].begin(); it != targets[t].end(); ++it)
+                    checkIndex(it.value(), accessors.size(), "accessors",
+                               cat(where, ".targets[", t, "].", printable(it.key(), 60)));
+            }
             checkIndexMember(prim, "indices", accessors.size(), "accessors", where);
             checkIndexMember(prim, "material", materials.size(), "materials", where);
             checkInteger(prim, "mode", 0, 6, false, where);

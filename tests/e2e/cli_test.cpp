@@ -726,5 +726,23 @@ TEST(CliBlender, BadTexturesAreOneLineErrorsNamingTheImage)
     expectError(run("render " + variant("textures/trunc.png", "d.gltf") + args), 1, "images[0] 'textures/trunc.png': unreadable PNG");
 }
 
+
+// Outputs are created with the user's umask, as any new file is (they were always 0644).
+TEST(CliRender, OutputsFollowTheUmask)
+{
+    const std::string dir = test::tempDir("cli-umask");
+    for (const auto& [mask, mode] : {std::pair<const char*, unsigned>{"077", 0600u}, {"022", 0644u}, {"002", 0664u}}) {
+        const std::string out = dir + "/u" + mask + ".exr";
+        const CliRun r = run("render " + std::string(FEN_SCENES_DIR) + "/room.gltf --out " + out +
+                                 " --paths 20000 --width 16 --no-progress",
+                             std::string("umask ") + mask + ";");
+        ASSERT_EQ(r.status, 0) << r.err;
+        for (const std::string& f : {out, dir + "/u" + mask + ".json", dir + "/u" + mask + ".png"}) {
+            const auto p = std::filesystem::status(f).permissions();
+            EXPECT_EQ(static_cast<unsigned>(p) & 0777u, mode) << f << " under umask " << mask;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace fen
