@@ -6,7 +6,11 @@
 #include <cstring>
 #include <filesystem>
 
+#include <csignal>
+#include <fstream>
+
 #include <fcntl.h>
+#include <sys/file.h>
 #include <stb/stb_image_write.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -67,6 +71,60 @@ void writeAll(int fd, const std::string& path, const std::string& bytes)
 
 void OutputFiles::add(const std::string& path, std::string bytes) { files_.emplace_back(path, std::move(bytes)); }
 
+// Beside `path`: ".NAME" + suffix.
+std::string besides(const std::string& path, const std::string& suffix)
+{
+    const fs::path p(path);
+    return ((p.parent_path().empty() ? fs::path(".") : p.parent_path()) / ("." + p.filename().string() + suffix)).string();
+}
+
+// Writes `bytes` to `path` through a temporary and a rename (the journal itself).
+void writeAtomically(const std::string& path, const std::string& bytes)
+{
+    std::string tmp;
+    const int fd = createTemporary(path, &tmp);
+    try {
+        writeAll(fd, path, bytes);
+    } catch (...) {
+        ::close(fd);
+        ::unlink(tmp.c_str());
+        throw;
+    }
+    ::close(fd);
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        ::unlink(tmp.c_str());
+        throw Error(cat(path, ": cannot write: ", errnoText(errno)));
+    }
+}
+
+// A journal left by a commit that did not finish: rename what is still a temporary into place.
+// Returns the number of files it moved.
+int finishCommit(const std::string& journal)
+{
+    std::ifstream in(journal);
+    if (!in)
+        return 0;
+    std::string line;
+    int moved = 0;
+    while (std::getline(in, line)) {
+        const std::size_t tab = line.find('\t');
+        if (tab == std::string::npos)
+            continue;
+        const std::string tmp = line.substr(0, tab), final = line.substr(tab + 1);
+        if (::access(tmp.c_str(), F_OK) == 0 && std::rename(tmp.c_str(), final.c_str()) == 0)
+            ++moved;
+    }
+    ::unlink(journal.c_str());
+    return moved;
+}
+
+void killAfterRenamesForTests(int renames)
+{
+    const char* n = std::getenv("FEN_KILL_AFTER_RENAMES");
+    if (n && *n && std::atoi(n) == renames)
+        ::raise(SIGKILL);
+}
+
 void OutputFiles::commit()
 {
     std::vector<std::string> temporaries;
@@ -87,13 +145,97 @@ void OutputFiles::commit()
             // user's umask gives a new file (as open(2) with 0666 would).
             ::chmod(tmp.c_str(), 0666 & ~processUmask());
         }
-        for (std::size_t i = 0; i < files_.size(); ++i)
-            if (std::rename(temporaries[i].c_str(), files_[i].first.c_str()) != 0)
-                throw Error(cat(files_[i].first, ": cannot write: ", errnoText(errno)));
     } catch (...) {
         for (const auto& t : temporaries)
             ::unlink(t.c_str());
         throw;
+    }
+    // From here the set is on disk: the journal makes the renames all-or-nothing across a kill.
+    const std::string journal = besides(files_.front().first, ".commit");
+    if (files_.size() > 1) {
+        std::string list;
+        for (std::size_t i = 0; i < files_.size(); ++i)
+            list += temporaries[i] + "\t" + files_[i].first + "\n";
+        try {
+            writeAtomically(journal, list);
+        } catch (...) {
+            for (const auto& t : temporaries)
+                ::unlink(t.c_str());
+            throw;
+        }
+    }
+    for (std::size_t i = 0; i < files_.size(); ++i) {
+        if (std::rename(temporaries[i].c_str(), files_[i].first.c_str()) != 0) {
+            const int e = errno;
+            // Some may be in place already: finish the set if the journal can, else leave it whole.
+            if (files_.size() > 1)
+                finishCommit(journal);
+            for (std::size_t k = i; k < files_.size(); ++k)
+                ::unlink(temporaries[k].c_str());
+            throw Error(cat(files_[i].first, ": cannot write: ", errnoText(e)));
+        }
+        killAfterRenamesForTests(static_cast<int>(i + 1));
+    }
+    if (files_.size() > 1)
+        ::unlink(journal.c_str());
+}
+
+OutputSetLock::OutputSetLock(const std::vector<std::string>& files)
+{
+    lockPath_ = besides(files.front(), ".lock");
+    // Lock, then make sure the name still leads to the file locked: a render that just finished
+    // may have removed it in between (then take the new one).
+    for (int attempt = 0; attempt < 8; ++attempt) {
+        fd_ = ::open(lockPath_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666 & ~processUmask());
+        if (fd_ < 0)
+            throw Error(cat(files.front(), ": cannot create its lock ", lockPath_, ": ", errnoText(errno)));
+        if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+            const int e = errno;
+            ::close(fd_);
+            fd_ = -1;
+            if (e == EWOULDBLOCK)
+                throw Error(cat(files.front(), ": another render is writing these outputs now (it holds ", lockPath_,
+                                "); give this one another --out"));
+            throw Error(cat(files.front(), ": cannot lock ", lockPath_, ": ", errnoText(e)));
+        }
+        struct stat held {}, named {};
+        if (::fstat(fd_, &held) == 0 && ::stat(lockPath_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+            held.st_dev == named.st_dev)
+            break;
+        ::close(fd_);
+        fd_ = -1;
+    }
+    if (fd_ < 0)
+        throw Error(cat(files.front(), ": cannot lock ", lockPath_, ": it keeps changing"));
+    // Holding the lock, what a killed render left is ours to finish or remove.
+    const int moved = finishCommit(besides(files.front(), ".commit"));
+    int orphans = 0;
+    for (const std::string& f : files) {
+        const fs::path p(f);
+        const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+        const std::string prefix = "." + p.filename().string() + ".";
+        std::error_code ec;
+        for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+            const std::string name = it->path().filename().string();
+            // mkstemp's six characters after ".NAME." (the data) or ".NAME.commit." (a journal)
+            const bool data = name.size() == prefix.size() + 6 && name.compare(0, prefix.size(), prefix) == 0;
+            const bool journal = name.size() == prefix.size() + 13 && name.compare(0, prefix.size() + 7, prefix + "commit.") == 0;
+            if (data || journal)
+                orphans += ::unlink(it->path().c_str()) == 0;
+        }
+    }
+    if (moved > 0)
+        recovered_ = cat("finished writing the ", moved, " outputs of a render killed while it wrote them");
+    if (orphans > 0)
+        recovered_ += cat(recovered_.empty() ? "" : "; ", "removed ", orphans,
+                          " temporary files a killed render left beside the outputs");
+}
+
+OutputSetLock::~OutputSetLock()
+{
+    if (fd_ >= 0) {
+        ::unlink(lockPath_.c_str());
+        ::close(fd_);
     }
 }
 

@@ -237,6 +237,13 @@ int runRender(const RenderOptions& opt)
         checkOutputPath(p, "--out");
     if (!opt.checkpointPath.empty())
         checkOutputPath(opt.checkpointPath, "--checkpoint");
+    // One render at a time writes this set; what a killed one left is finished or removed first.
+    std::vector<std::string> outputSet{opt.outPath, noisePath, pngPath, errorPath, jsonPath};
+    if (!opt.checkpointPath.empty())
+        outputSet.push_back(opt.checkpointPath);
+    const OutputSetLock outputLock(outputSet);
+    if (!outputLock.recovered().empty())
+        std::fprintf(stderr, "fenestra: warning: %s: %s\n", opt.outPath.c_str(), outputLock.recovered().c_str());
     if (!opt.resumePath.empty() && !std::ifstream(opt.resumePath))
         throw Error(cat(opt.resumePath, ": cannot open the checkpoint (--resume): ", std::strerror(errno)));
 

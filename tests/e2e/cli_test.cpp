@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -742,6 +743,52 @@ TEST(CliRender, OutputsFollowTheUmask)
             EXPECT_EQ(static_cast<unsigned>(p) & 0777u, mode) << f << " under umask " << mask;
         }
     }
+}
+
+
+// The outputs are one set: a render killed between the renames of its files leaves a journal, and
+// the next render into that --out finishes them before anything else (here a render that then
+// fails on a missing --reference), so the set is wholly the killed render's, bit for bit, with no
+// temporary left. A second render into the same --out while one runs is refused at once.
+TEST(CliRender, OutputsAreCommittedAsASetAndLocked)
+{
+    const std::string dir = test::tempDir("cli-set");
+    const std::string scene = std::string(FEN_SCENES_DIR) + "/room.gltf";
+    const std::string args = " --paths 40000 --width 32 --no-progress";
+    ASSERT_EQ(run("render " + scene + " --out " + dir + "/old/r.exr --seed 3" + args).status, 0);
+    ASSERT_EQ(run("render " + scene + " --out " + dir + "/want/r.exr --seed 7" + args).status, 0);
+    // The old set, then seed 7 killed after two of its four renames: a mixed set, and a journal.
+    std::filesystem::copy(dir + "/old", dir + "/out");
+    const CliRun k = run("render " + scene + " --out " + dir + "/out/r.exr --seed 7" + args, "FEN_KILL_AFTER_RENAMES=2");
+    EXPECT_EQ(k.status, 128 + 9) << k.err;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/out/.r.exr.commit"));
+    EXPECT_NE(slurp(dir + "/out/r.json"), slurp(dir + "/want/r.json"));  // not yet renamed
+    // Any render into that --out first finishes the set.
+    const CliRun f = run("render " + scene + " --out " + dir + "/out/r.exr --reference " + dir + "/none.exr" + args);
+    EXPECT_EQ(f.status, 1) << f.err;
+    EXPECT_NE(f.err.find("finished writing the 2 outputs of a render killed"), std::string::npos) << f.err;
+    for (const char* name : {"r.exr", "r.noise.exr", "r.png"})
+        EXPECT_EQ(slurp(dir + "/out/" + name), slurp(dir + "/want/" + name)) << name;
+    const auto jo = nlohmann::json::parse(slurp(dir + "/out/r.json")), jw = nlohmann::json::parse(slurp(dir + "/want/r.json"));
+    for (const char* key : {"seed", "paths", "mean_luminance_cd_m2", "noise_std_err_cd_m2"})
+        EXPECT_EQ(jo[key], jw[key]) << key;
+    EXPECT_EQ(jo["emission"]["checksum"], jw["emission"]["checksum"]);
+    for (const auto& e : std::filesystem::directory_iterator(dir + "/out"))
+        EXPECT_TRUE(e.path().filename().string()[0] != '.') << "left behind: " << e.path();
+    // An orphan temporary from a render killed while writing is removed too.
+    std::ofstream(dir + "/out/.r.png.Ab12Cd") << "half a PNG";
+    ASSERT_EQ(run("render " + scene + " --out " + dir + "/out/r.exr" + args).status, 0);
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out/.r.png.Ab12Cd"));
+
+    // The lock: a long render holds it, a second one into the same --out is refused at once.
+    const std::string bg = dir + "/bg.pid";
+    std::system((std::string("sh -c '") + FENESTRA_BIN + " render " + scene + " --out " + dir +
+                 "/out/r.exr --time 30 --width 32 --no-progress >/dev/null 2>&1 & echo $! > " + bg + "'").c_str());
+    for (int i = 0; i < 100 && !std::filesystem::exists(dir + "/out/.r.exr.lock"); ++i)
+        ::usleep(50000);
+    const CliRun second = run("render " + scene + " --out " + dir + "/out/r.exr" + args);
+    expectError(second, 1, "another render is writing these outputs now");
+    std::system(("kill -9 $(cat " + bg + ")").c_str());
 }
 
 }  // namespace
