@@ -1,6 +1,9 @@
 // checkpoint.cpp — writing, checking and reading checkpoints (checkpoint.h).
 #include "render/checkpoint.h"
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -207,6 +210,25 @@ std::string readCheckpoint(const std::string& path, const nlohmann::json& finger
     if (firstDifference(fingerprint, theirs, "", &where))
         throw Error(cat(path, ": made for another render: ", where));
     return bytes.substr(eol + 1 + 8, static_cast<std::size_t>(length));
+}
+
+void requireCheckpointTarget(const std::string& path, const std::string& option)
+{
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0) {
+        if (errno == ENOENT)
+            return;
+        throw Error(cat(option, " ", printable(path), ": ", std::strerror(errno)));
+    }
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+        throw Error(cat(option, " ", printable(path), ": exists and is not a regular file; a checkpoint is written "
+                                                       "only over a checkpoint"));
+    const std::size_t magic = std::strlen(kMagic);
+    std::string head(magic, '\0');
+    std::ifstream in(path, std::ios::binary);
+    if (!in.read(head.data(), static_cast<std::streamsize>(magic)) || head != kMagic)
+        throw Error(cat(option, " ", printable(path), ": exists and is not a fenestra checkpoint; a checkpoint is "
+                                                       "written only over a checkpoint or to a new file"));
 }
 
 }  // namespace fen

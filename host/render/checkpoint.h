@@ -38,4 +38,9 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& fingerprint,
 // fingerprint equals `fingerprint` (fen::Error naming the file and the first key that differs).
 std::string readCheckpoint(const std::string& path, const nlohmann::json& fingerprint);
 
+// Whether `path` may receive a checkpoint: it does not exist, or it is a regular file that starts
+// as a checkpoint does (never a scene, an image or anything else a typo names). Throws fen::Error
+// naming `option` otherwise.
+void requireCheckpointTarget(const std::string& path, const std::string& option);
+
 }  // namespace fen

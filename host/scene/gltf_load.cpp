@@ -716,6 +716,9 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
 
     Scene scene;
     scene.source = path;
+    scene.files.push_back(path);
+    for (const std::string& f : sceneFolder.filesRead())
+        scene.files.push_back(f);
     scene.nodeNames.resize(model.nodes.size());
     scene.nodePortal.assign(model.nodes.size(), PortalMark::None);
     scene.nodeParent = checkNodeForest(model, path);

@@ -86,6 +86,7 @@ struct Scene {
     SkySpec sky;
     std::vector<CameraSpec> cameras;           // in scene traversal order
     std::vector<std::string> warnings;         // ignored features worth telling the user
+    std::vector<std::string> files;            // the files it was read from: the scene's, then its buffers' and images'
     Aabb bounds;
 };
 

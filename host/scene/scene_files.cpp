@@ -187,6 +187,7 @@ bool SceneFolder::readWholeFile(std::vector<unsigned char>* out, std::string* er
     if (why.empty()) {
         try {
             *out = readSceneFile(canonical);
+            folder->read_.push_back(canonical);
             return true;
         } catch (const Error&) {
             why = "cannot be read";  // readSceneFile's message would repeat the path

@@ -45,6 +45,8 @@ public:
     // every load made with it. A path it refuses is recorded in refusal().
     void install(tinygltf::TinyGLTF& loader);
     const std::string& refusal() const { return refusal_; }
+    // The canonical paths of the files read through it (buffers, images), in order.
+    const std::vector<std::string>& filesRead() const { return read_; }
 
 private:
     // Why the file system path `path` (the folder, '/', a decoded URI: as tinygltf joins them)
@@ -59,6 +61,7 @@ private:
 
     std::string canonical_;  // no trailing '/', except for "/" itself
     std::string refusal_;
+    std::vector<std::string> read_;
 };
 
 // tinygltf's decoding of a URI into a file name (its dlib::urldecode): "%XY" is a byte, a
