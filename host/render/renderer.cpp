@@ -52,7 +52,7 @@ struct Renderer::Impl {
     Film film;
     std::unique_ptr<EmissionStrategy> strategy;
     std::uint32_t pool;
-    std::unique_ptr<Wavefront> wavefront;
+    std::unique_ptr<PathLoop> loop;
     CameraSpec camera;
     std::uint64_t sceneHash_ = 0;  // only when checkpointing or resuming
 
@@ -73,7 +73,7 @@ struct Renderer::Impl {
         camera = cam;
         if (!st.checkpointPath.empty() || !st.resumePath.empty())
             sceneHash_ = sceneHash(s);
-        wavefront = std::make_unique<Wavefront>(c, scene, *strategy, film, sky, makeDevCamera(cam, w, h), pool,
+        loop = std::make_unique<PathLoop>(c, scene, *strategy, film, sky, makeDevCamera(cam, w, h), pool,
                                                 st.kernels ? *st.kernels : defaultKernelMode(c.info().isGpu()));
         dev::RenderParams p{};
         glm::dvec3 centre;
@@ -97,7 +97,7 @@ struct Renderer::Impl {
         p.split_weight = static_cast<float>(st.splitWeight * strategy->emittedFluxPerPath());
         if (!(p.split_weight > 0.0f))
             p.split_max = 1u;  // no light emitted: nothing to split
-        wavefront->setParams(p);
+        loop->setParams(p);
     }
 
     bool stopping() const { return settings.stop && settings.stop->load(); }
@@ -144,7 +144,7 @@ struct Renderer::Impl {
         strategy->imageEstimate(Y);
     }
 
-    // The emission table picks of paths [first, first + n), one run of the wavefront (a batch, or a
+    // The emission table picks of paths [first, first + n), one run of the path loop (a batch, or a
     // learning pass within one): one sweep of a lattice over them at an offset drawn from the seed
     // and `first` (kernels/lib/emit_source.h emission_pick_bits). Per run, not per batch: a
     // learning strategy's pass must see every column of its table, as its statistics assume.
@@ -154,7 +154,7 @@ struct Renderer::Impl {
                           FEN_RNG_PICK_LATTICE};
         const std::uint32_t offset = dev::fen_philox4x32_10(ctr, settings.seed, 0x1a771ceu).x;
         const double step = std::ldexp(1.0, 32) / static_cast<double>(std::max<std::uint64_t>(n, 1));
-        wavefront->setPickLattice(offset, static_cast<std::uint32_t>(std::clamp(std::round(step), 1.0, 4294967295.0)));
+        loop->setPickLattice(offset, static_cast<std::uint32_t>(std::clamp(std::round(step), 1.0, 4294967295.0)));
     }
 
     // Runs paths [base, base + count) as one batch, in the strategy's passes, and returns its
@@ -163,7 +163,7 @@ struct Renderer::Impl {
                                  BatchCounts& counts, const BatchStatistics* stats)
     {
         film.clear();
-        wavefront->beginBatch();
+        loop->beginBatch();
         const auto onIteration = [this](std::uint64_t paths, std::uint64_t rays) {
             pathsDone += paths;
             raysDone += rays;
@@ -173,7 +173,7 @@ struct Renderer::Impl {
         while (done < count) {
             const std::uint64_t n = std::min(count - done, std::max<std::uint64_t>(1, strategy->passLimit()));
             setPickLattice(base + done, n);
-            wavefront->run(base + done, n, counts, onIteration);
+            loop->run(base + done, n, counts, onIteration);
             done += n;
             strategy->afterPaths(n, done == count);
             // A counted batch's end is estimated from the counted batches, batch included, by
@@ -182,7 +182,7 @@ struct Renderer::Impl {
                 estimateImage(stats, done);
         }
         const std::uint64_t shadowBefore = counts.shadowRays;
-        wavefront->endBatch(batch, counts);
+        loop->endBatch(batch, counts);
         raysDone += counts.shadowRays - shadowBefore;
         return film.read(count);
     }
@@ -299,10 +299,10 @@ struct Renderer::Impl {
     {
         RenderResult r;
         r.bvhSeconds = scene.bvhBuildSeconds();
-        r.kernelBuildSeconds = wavefront->kernelBuildSeconds();
+        r.kernelBuildSeconds = loop->kernelBuildSeconds();
         r.bvhWidth = scene.bvh().width();
         r.poolSize = pool;
-        r.kernelMode = wavefront->mode();
+        r.kernelMode = loop->mode();
         r.rouletteDepth = settings.rouletteDepth;
         r.method = strategy->method();
         const int batches = std::max(2, settings.batches);

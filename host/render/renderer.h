@@ -1,6 +1,6 @@
 // renderer.h — a render from start to finish (DESIGN.md §2, §4, §5): the scene on the device, the
-// emission strategy (emission/strategy.h), the film (render/film.h), the wavefront stages
-// (render/wavefront.h), and the batch loop.
+// emission strategy (emission/strategy.h), the film (render/film.h), the stages in either kernel
+// form (render/path_loop.h), and the batch loop.
 //
 // Paths are rendered in B equal batches; each batch's pixels are accumulated in 128-bit fixed
 // point (bit-identical for a given seed and device) and folded into a running mean and sum of
@@ -26,7 +26,7 @@
 #include "emission/strategy.h"
 #include "io/image.h"
 #include "render/image_stats.h"
-#include "render/wavefront.h"
+#include "render/path_loop.h"
 #include "scene/scene.h"
 #include "sky/goniogram.h"
 

@@ -1,5 +1,6 @@
-// wavefront.h — the light-tracing stages on the device (DESIGN.md §2, §4): a pool of path slots
-// and per iteration emit -> intersect -> shade -> connect (kernels/*.cl), until a range of path
+// path_loop.h — the light-tracing stages on the device (DESIGN.md §2, §4), in either kernel form:
+// the wavefront (a pool of path slots and per iteration emit -> intersect -> shade -> connect,
+// kernels/*.cl) or the fused kernel (one kernel, whole paths per work-item), until a range of path
 // indices is all emitted and dead; and the camera pass for the sky seen directly.
 //
 // The emission stage is built with the strategy's definitions (emission/strategy.h); connect is
@@ -44,9 +45,10 @@ struct BatchCounts {
     double cutFlux = 0.0;  // lm x paths: the flux of the paths --max-bounces cut
 };
 
-class Wavefront {
+// Runs ranges of paths through the stages, in the kernel form `mode`.
+class PathLoop {
 public:
-    Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy, Film& film,
+    PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy, Film& film,
               const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
               KernelMode mode = KernelMode::Wavefront);
     KernelMode mode() const { return mode_; }

@@ -1,5 +1,5 @@
-// wavefront.cpp — the stage kernels and their loop (wavefront.h).
-#include "render/wavefront.h"
+// path_loop.cpp — the stage kernels and their loop, wavefront or fused (path_loop.h).
+#include "render/path_loop.h"
 
 #include <algorithm>
 #include <chrono>
@@ -37,9 +37,9 @@ std::uint32_t defaultPoolSlots(const ocl::DeviceInfo& device)
     return slots;
 }
 
-Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy,
-                     Film& film, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
-                     KernelMode mode)
+PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy,
+                   Film& film, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
+                   KernelMode mode)
     : ctx_(ctx), mode_(mode), strategy_(strategy), film_(film), pool_(pool)
 {
     paramsBuf_ = ctx.buffer(CL_MEM_READ_ONLY, sizeof(dev::RenderParams), "render parameters");
@@ -105,7 +105,7 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
 
 // PoCL compiles a kernel's work-group function at its first launch: do that here, on an empty
 // pool and an empty batch, so that render time is rendering.
-void Wavefront::warmUp()
+void PathLoop::warmUp()
 {
     auto& q = ctx_.queue();
     dev::RenderParams p{};
@@ -122,13 +122,13 @@ void Wavefront::warmUp()
     ctx_.stats().reset();
 }
 
-void Wavefront::beginBatch()
+void PathLoop::beginBatch()
 {
     ctx_.queue().enqueueFillBuffer(counters_, cl_ulong(0), 0, FEN_CTR_COUNT * 8);
     ctx_.queue().enqueueFillBuffer(paths_, cl_uchar(0), 0, std::size_t{pool_} * sizeof(dev::PathState));
 }
 
-void Wavefront::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+void PathLoop::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
                     const std::function<void(std::uint64_t, std::uint64_t)>& progress)
 {
     if (mode_ == KernelMode::Fused) {
@@ -170,7 +170,7 @@ void Wavefront::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts
 
 // In launches of at most 2^20 paths (about a second on two cores): progress stays live and an
 // interrupt waits for little.
-void Wavefront::runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+void PathLoop::runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
                          const std::function<void(std::uint64_t, std::uint64_t)>& progress)
 {
     auto& q = ctx_.queue();
@@ -196,7 +196,7 @@ void Wavefront::runFused(std::uint64_t base, std::uint64_t count, BatchCounts& c
     }
 }
 
-void Wavefront::endBatch(std::uint32_t batch, BatchCounts& counts)
+void PathLoop::endBatch(std::uint32_t batch, BatchCounts& counts)
 {
     auto& q = ctx_.queue();
     params_.batch = batch;
