@@ -31,7 +31,7 @@
 
 #include "cl/context.h"
 #include "emission/adaptive_grid.h"
-#include "emission/first_bounce_guide.h"
+#include "scatter/first_bounce_guide.h"
 #include "emission/portal_emission.h"
 #include "emission/source_table.h"
 #include "scene/scene.h"

@@ -1,5 +1,5 @@
 // first_bounce_guide.cpp — the first-bounce guide's learning (first_bounce_guide.h).
-#include "emission/first_bounce_guide.h"
+#include "scatter/first_bounce_guide.h"
 
 #include <algorithm>
 #include <cmath>
