@@ -13,10 +13,13 @@
 #include "bvh_build.h"
 #include "cl/launch.h"
 #include "emission/adaptive_grid.h"
+#include "emission/emission_sphere.h"
+#include "emission/light_levels.h"
 #include "emission/portal_planes.h"
 #include "trace/device_bvh.h"
 #include "io/state_io.h"
 #include "util/error.h"
+#include "util/integer_cdf.h"
 #include "util/fixed_point.h"
 
 namespace fen {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cl/launch.h"
+#include "emission/uniform_emission.h"
 #include "trace/device_bvh.h"
 #include "io/state_io.h"
 #include "util/error.h"

@@ -33,9 +33,9 @@
 #include "emission/adaptive_grid.h"
 #include "scatter/first_bounce_guide.h"
 #include "emission/portal_emission.h"
-#include "emission/source_table.h"
 #include "scene/scene.h"
 #include "sky/goniogram.h"
+#include "sky/sky_tables.h"
 
 namespace fen {
 

@@ -2,6 +2,7 @@
 #include "emission/uniform_strategy.h"
 
 #include "cl/launch.h"
+#include "emission/uniform_emission.h"
 
 namespace fen {
 

@@ -2,7 +2,7 @@
 // optimisation"): every path enters the box that bounds the scene at a point uniform over the
 // box's silhouette seen along its direction; the sun or a sky cell is chosen in proportion to its
 // flux into the box.
-// Tables: source_table.h; device half: kernels/lib/emit_uniform.h.
+// Tables: uniform_emission.h; device half: kernels/lib/emit_uniform.h.
 #pragma once
 
 #include <memory>

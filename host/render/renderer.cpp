@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "emission/emission_sphere.h"
+#include "emission/light_levels.h"
 #include "io/state_io.h"
 #include "render/camera_setup.h"
 #include "render/checkpoint.h"

@@ -6,9 +6,9 @@
 #include <cstring>
 #include <numeric>
 
-#include "emission/source_table.h"
 #include "io/state_io.h"
 #include "util/error.h"
+#include "util/integer_cdf.h"
 #include "util/fixed_point.h"
 
 namespace fen {
