@@ -53,10 +53,11 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
 
     const auto t0 = std::chrono::steady_clock::now();
     const auto defs = scene.defines();
+    const EmissionKernels ek = strategy.kernels();
     auto connectDefs = defs;
-    if (strategy.learns())
+    if (ek.gatherStats)
         connectDefs.push_back("FEN_EMISSION_STATS=1");
-    const cl::Buffer* pixelScale = strategy.statsPixelScale();
+    const cl::Buffer* pixelScale = ek.statsPixelScale;
     if (pixelScale)
         connectDefs.push_back("FEN_STATS_PIXEL_SCALE=1");
     else
@@ -64,17 +65,17 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     if (mode == KernelMode::Fused) {
         auto fusedDefs = connectDefs;
         fusedDefs.push_back("FEN_FUSED=1");
-        fused_ = cl::Kernel(ctx.program(strategy.emitProgram(), fusedDefs), "trace_fused");
+        fused_ = cl::Kernel(ctx.program(ek.emitProgram, fusedDefs), "trace_fused");
         // Enough work-items to keep every compute unit busy while the last chunks drain.
         fusedItems_ = std::size_t{std::max<cl_uint>(1, ctx.info().computeUnits)} * 16;
     }
-    emit_ = cl::Kernel(ctx.program(strategy.emitProgram(), defs), "emit_paths");
+    emit_ = cl::Kernel(ctx.program(ek.emitProgram, defs), "emit_paths");
     intersect_ = cl::Kernel(ctx.program("intersect.cl", defs), "intersect_paths");
     shade_ = cl::Kernel(ctx.program("shade.cl", defs), "shade_paths");
     connect_ = cl::Kernel(ctx.program("connect.cl", connectDefs), "connect_paths");
     cameraPass_ = cl::Kernel(ctx.program("camera_pass.cl", defs), "camera_pass");
     const DeviceBvh& b = scene.bvh();
-    const FirstBounceGuide* guide = strategy.guide();
+    const FirstBounceGuide* guide = ek.guide;
     if (!guide)
         guide = (noGuide_ = std::make_unique<FirstBounceGuide>(ctx, GuideOptions{}, glm::dvec3(0.0), 1.0)).get();
     strategy.bindEmitArgs(emit_, 3);  // checks the arity: the strategy's arguments are the last
@@ -82,7 +83,7 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
         cl_uint a = 0;
         const cl::Buffer* fusedArgs[] = {&paramsBuf_, &counters_, &b.nodes(), &b.packets(),
                                          &scene.primMaterial(), &scene.materials(), &cameraBuf_,
-                                         &film.accumulators(), &strategy.cellStats(), pixelScale,
+                                         &film.accumulators(), ek.cellStats, pixelScale,
                                          &guide->params(), &guide->tables(), &guide->stats()};
         for (const cl::Buffer* buf : fusedArgs)
             fused_.setArg(a++, *buf);
@@ -95,7 +96,7 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
                        cameraBuf_, connections_, guide->params(), guide->tables(), counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
-                       scene.materials(), film.accumulators(), strategy.cellStats(), *pixelScale, guide->stats(),
+                       scene.materials(), film.accumulators(), *ek.cellStats, *pixelScale, guide->stats(),
                        counters_);
     ocl::setKernelArgs(cameraPass_, paramsBuf_, cameraBuf_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), sky.theta, sky.phi, sky.values, film.cameraImage(), counters_);

@@ -3,8 +3,8 @@
 // kernels/*.cl) or the fused kernel (one kernel, whole paths per work-item), until a range of path
 // indices is all emitted and dead; and the camera pass for the sky seen directly.
 //
-// The emission stage is built with the strategy's definitions (emission/strategy.h); connect is
-// built to gather cell statistics when the strategy learns. Counters (shared/fen_render.h) are
+// The emission stage is built with the strategy's program and bound to its buffers; connect and
+// shade to its statistics and first-bounce guide (emission/strategy.h EmissionKernels). Counters (shared/fen_render.h) are
 // zeroed per batch and read back once per iteration; each launch is named and timed
 // (Context::stats()).
 #pragma once
