@@ -157,7 +157,7 @@ struct Renderer::Impl {
     {
         dev::RngBlock ctr{static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(first >> 32), 0u,
                           FEN_RNG_PICK_LATTICE};
-        const std::uint32_t offset = dev::fen_philox4x32_10(ctr, settings.seed, 0x1a771ceu).x;
+        const std::uint32_t offset = dev::fen_philox4x32_10(ctr, settings.seed, FEN_RNG_STREAM_PICK_LATTICE).x;
         const double step = std::ldexp(1.0, 32) / static_cast<double>(std::max<std::uint64_t>(n, 1));
         loop->setPickLattice(offset, static_cast<std::uint32_t>(std::clamp(std::round(step), 1.0, 4294967295.0)));
     }
