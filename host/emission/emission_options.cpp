@@ -21,7 +21,15 @@ EmissionOptions& EmissionOptions::operator=(EmissionOptions&&) noexcept = defaul
 
 void EmissionOptions::add(CLI::App& render)
 {
-    render.add_option("--method", method_, "Emission strategy: adaptive (default), uniform or portal");
+    // "adaptive (default), uniform or portal": the default first, then the others as listed.
+    std::vector<std::string> names = {method_ + " (default)"};
+    for (const StrategyDescriptor* d : emissionStrategies())
+        if (d->name != method_)
+            names.push_back(d->name);
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    render.add_option("--method", method_, "Emission strategy: " + list);
     render.add_option("--portals", portals_, "Portal nodes NAME,NAME replacing the scene's extras.portal marking");
     for (const auto& block : blocks_)
         if (block)
