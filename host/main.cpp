@@ -15,6 +15,7 @@
 #include "render/render_cmd.h"
 #include "cl/cl_error.h"
 #include "commands.h"
+#include "emission/strategy_registry.h"
 #include "util/error.h"
 
 namespace {
@@ -108,57 +109,19 @@ int main(int argc, char** argv)
     renderCmd->add_option("--region", render.regions,
                           "Named region NAME=x0,y0,x1,y1 also reported in the JSON (regions.NAME); repeatable");
     renderCmd->add_option("--reference", render.referencePath, "Reference EXR: report RMSE and relative MSE");
-    renderCmd->add_option("--method", render.method,
-                          "Emission strategy: adaptive (default), uniform or portal");
-    renderCmd->add_option("--base", render.base,
-                          "With adaptive: the base density it learns over, uniform (default) or portal");
-    renderCmd->add_option("--portals", render.portals,
-                          "Portal nodes NAME,NAME replacing the scene's extras.portal marking");
-    renderCmd->add_option("--adaptive-initial-sky-depth", render.adaptiveInitialSkyDepth,
-                          "With adaptive: sky direction boxes to start with, 4^depth (default 1)");
-    renderCmd->add_option("--adaptive-max-sky-depth", render.adaptiveMaxSkyDepth,
-                          "With adaptive: finest sky direction boxes, 2^-depth of a side (default 6)");
-    renderCmd->add_option("--adaptive-estimate", render.adaptiveEstimate,
-                          "With adaptive: how a cell's second moment is estimated, pooled (default) or squares");
-    renderCmd->add_option("--adaptive-initial-depth", render.adaptiveInitialDepth,
-                          "With adaptive: origin boxes per region to start with, 4^depth (default 3)");
-    renderCmd->add_option("--adaptive-max-depth", render.adaptiveMaxDepth,
-                          "With adaptive: finest origin boxes, 2^-depth of the region's side (default 10)");
-    renderCmd->add_option("--adaptive-defensive", render.adaptiveDefensive,
-                          "With adaptive: share of the base density kept in the mixture (default 0.1)");
-    renderCmd->add_option("--adaptive-disk-share", render.adaptiveDiskShare,
-                          "With adaptive --base portal: the emission disk's share of the base (default 0.1)");
-    renderCmd->add_option("--adaptive-split", render.adaptiveSplit,
-                          "With adaptive: split a cell when that lowers the learned objective by this share (default 1/2048)");
-    renderCmd->add_option("--adaptive-first-pass", render.adaptiveFirstPass,
-                          "With adaptive: paths of the first learning pass; passes double (default 65536)");
-    renderCmd->add_option("--adaptive-prior", render.adaptivePrior,
-                          "With adaptive: pseudo-paths of the prior in every cell (default 32)");
-    renderCmd->add_option("--adaptive-weights", render.adaptiveWeights,
-                          "With adaptive: batches weigh by predicted precision, or all alike: predicted (default) or equal");
-    renderCmd->add_option("--adaptive-guide", render.adaptiveGuide,
-                          "With adaptive: also learn where the first bounce sends light to the camera, on or off (default on)");
-    renderCmd->add_option("--adaptive-guide-share", render.adaptiveGuideShare,
-                          "With adaptive --adaptive-guide on: the uniform share kept in every learned bounce table (default 0.25)");
-    renderCmd->add_option("--adaptive-guide-voxels", render.adaptiveGuideVoxels,
-                          "With adaptive --adaptive-guide on: guide voxels across the scene's bounding radius (default 4)");
-    renderCmd->add_option("--adaptive-target", render.adaptiveTarget,
-                          "With adaptive: minimise the absolute (default) or the relative squared error per pixel");
-    renderCmd->add_option("--adaptive-max-cells", render.adaptiveMaxCells,
-                          "With adaptive: most cells the grid may have (default 32768)");
-    renderCmd->add_option("--portal-complement", render.portalComplement,
-                          "With portal: share of paths that measure the light no portal passes (default 0.05; 0: none)");
-    renderCmd->add_option("--portal-overlap", render.portalOverlap,
-                          "Where portals overlap along a ray: reject (default) or weight; none is "
-                          "biased (for demonstration)");
+    render.emission.add(*renderCmd);  // --method, --portals and every strategy's options
     renderCmd->add_option("--layout", renderLayout, "BVH layout: bvh2, bvh4 or bvh8 (default: the device's)");
     renderCmd->add_option("--batches", render.batches, "Independent batches for the noise estimate (default 16)");
     renderCmd->add_option("--camera-spp", render.cameraSpp,
                           "Camera-pass samples per pixel per batch, for the sky seen directly (default 1)");
     renderCmd->add_option("--kernels", render.kernels,
                           "How the stages run: fused (one kernel per path, default on a CPU) or wavefront (default on a GPU)");
+    std::string rouletteDefaults;  // each strategy's own (emission/strategy_registry.h)
+    for (const fen::StrategyDescriptor* d : fen::emissionStrategies())
+        rouletteDefaults += (rouletteDefaults.empty() ? "" : ", ") + std::to_string(d->rouletteDepth) + " for " + d->name;
     renderCmd->add_option("--roulette-depth", render.rouletteDepth,
-                          "Russian roulette from this surface interaction on; before it every path goes on (default 5 for uniform, 3 for portal and adaptive)");
+                          "Russian roulette from this surface interaction on; before it every path goes on (default " +
+                              rouletteDefaults + ")");
     renderCmd->add_option("--split", render.split,
                           "At its first diffuse hit, a path weighing k >= 2 times the mean emitted weight goes on as min(k, N) "
                           "branches of 1/k the weight (1: never; default 1)");
@@ -208,7 +171,8 @@ int main(int argc, char** argv)
                     throw fen::Error("--layout takes one of bvh2, bvh4, bvh8");
                 render.bvhWidth = w[0];
             }
-            render.progress = progressOff ? 0 : (progressOn ? 1 : -1);
+            if (progressOff || progressOn)
+                render.progress = !progressOff;
             if (renderCmd->count("--paths")) {
                 if (renderPaths <= 0)
                     throw fen::Error("--paths " + std::to_string(renderPaths) + ": must be a positive number of paths");

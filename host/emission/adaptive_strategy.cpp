@@ -1,4 +1,4 @@
-// adaptive_strategy.cpp — the `adaptive` strategy's tables, passes and buffers
+// adaptive_strategy.cpp — the `adaptive` strategy's tables, passes, buffers and descriptor
 // (adaptive_strategy.h).
 #include "emission/adaptive_strategy.h"
 
@@ -13,10 +13,13 @@
 #include "bvh_build.h"
 #include "cl/launch.h"
 #include "emission/adaptive_grid.h"
+#include "emission/emission_sphere.h"
+#include "emission/light_levels.h"
 #include "emission/portal_planes.h"
 #include "trace/device_bvh.h"
 #include "io/state_io.h"
 #include "util/error.h"
+#include "util/integer_cdf.h"
 #include "util/fixed_point.h"
 
 namespace fen {
@@ -164,13 +167,22 @@ public:
     }
 
     EmissionMethod method() const override { return EmissionMethod::Adaptive; }
-    std::string emitProgram() const override { return "emit_adaptive.cl"; }
+    EmissionKernels kernels() const override
+    {
+        EmissionKernels k;
+        k.emitProgram = "emit_adaptive.cl";
+        k.gatherStats = true;
+        k.cellStats = &stats_;
+        k.statsScale = statsScale_;
+        k.statsPixelScale = opt_.relativeTarget ? &pixelScale_ : nullptr;
+        k.guide = guide_.get();  // off: slots 0, placeholders
+        return k;
+    }
     void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
     {
         ocl::setKernelArgsFrom(emit, first, params_, cellAlias_, cellBuf_, sky_.theta, sky_.phi, sky_.values,
                                frames_, portalBvh_->nodes(), portalBvh_->packets());
     }
-    bool learns() const override { return true; }
     // The flux through the disk, whatever the base: the cells cover every line once
     // (tests/kernels/adaptive_sampling_test.cpp).
     double emittedFluxPerPath() const override
@@ -183,10 +195,6 @@ public:
         batchWeights_.push_back(w);
         return w;
     }
-    const cl::Buffer& cellStats() const override { return stats_; }
-    FirstBounceGuide* guide() override { return guide_.get(); }  // off: slots 0, placeholders
-    double statsScale() const override { return statsScale_; }
-    const cl::Buffer* statsPixelScale() const override { return opt_.relativeTarget ? &pixelScale_ : nullptr; }
 
     // The relative target: a contribution to pixel p counts as Y * mean / max(tile(p), floor mean),
     // i.e. relative to its pixel's brightness in units of the image's mean.
@@ -534,41 +542,24 @@ private:
 
 }  // namespace
 
-void validateAdaptiveOptions(const AdaptiveOptions& o)
-{
-    if (o.base != EmissionMethod::Uniform && o.base != EmissionMethod::Portal)
-        throw Error("--base: expected uniform or portal");
-    if (o.maxSkyDepth < 0 || o.maxSkyDepth > 12)
-        throw Error(cat("--adaptive-max-sky-depth ", o.maxSkyDepth, " must be in 0..12"));
-    if (o.initialSkyDepth < 0 || o.initialSkyDepth > 5 || o.initialSkyDepth > o.maxSkyDepth)
-        throw Error(cat("--adaptive-initial-sky-depth ", o.initialSkyDepth, " must be in 0..5 and at most "
-                        "--adaptive-max-sky-depth (", o.maxSkyDepth, ")"));
-    if (o.maxDepth < 0 || o.maxDepth > 16)
-        throw Error(cat("--adaptive-max-depth ", o.maxDepth, " must be in 0..16"));
-    if (o.initialDepth < 0 || o.initialDepth > 6 || o.initialDepth > o.maxDepth)
-        throw Error(cat("--adaptive-initial-depth ", o.initialDepth, " must be in 0..6 and at most "
-                        "--adaptive-max-depth (", o.maxDepth, ")"));
-    if (!(o.defensive > 0.0 && o.defensive <= 1.0))
-        throw Error(cat("--adaptive-defensive ", o.defensive, " must be in (0, 1]: a share of 0 "
-                        "would let cells that have not shown light yet die (bias)"));
-    if (!(o.diskShare > 0.0 && o.diskShare < 1.0))
-        throw Error(cat("--adaptive-disk-share ", o.diskShare, " must be in (0, 1): with 0, light "
-                        "that does not start through a marked portal would be lost"));
-    if (!(o.splitGain > 0.0 && o.splitGain <= 1.0))
-        throw Error(cat("--adaptive-split ", o.splitGain, " must be in (0, 1]"));
-    if (o.firstPass < 1024 || o.firstPass > (std::uint64_t{1} << 40))
-        throw Error(cat("--adaptive-first-pass ", o.firstPass, " must be in 1024..2^40 paths"));
-    if (!(o.priorPaths > 0.0 && o.priorPaths <= 1e9))
-        throw Error(cat("--adaptive-prior ", o.priorPaths, " must be in (0, 10^9] pseudo-paths"));
-    if (o.maxCells < 1 || o.maxCells > (1u << 22))
-        throw Error(cat("--adaptive-max-cells ", o.maxCells, " must be in 1..4194304"));
-    validateGuideOptions(o.guide);
-}
-
 std::unique_ptr<AdaptiveStrategy> makeAdaptiveStrategy(const EmissionSettings& settings,
                                                        const EmissionInputs& in)
 {
     return std::make_unique<AdaptiveStrategyImpl>(settings, in);
 }
+
+// Roulette from the 3rd interaction: its paths are aimed in from the start
+// (docs/results/termination.md).
+const StrategyDescriptor kAdaptiveStrategy = {
+    EmissionMethod::Adaptive,
+    "adaptive",
+    3,
+    makeAdaptiveOptionBlock,
+    [](const EmissionSettings& e) { return e.adaptive.base == EmissionMethod::Portal; },
+    adaptiveFingerprint,
+    [](const EmissionSettings& e, const EmissionInputs& in) -> std::unique_ptr<EmissionStrategy> {
+        return makeAdaptiveStrategy(e, in);
+    },
+};
 
 }  // namespace fen

@@ -20,11 +20,13 @@
 // Passes: the first has firstPass paths, each next one twice as many, and every batch ends one;
 // after each, the statistics come back and the grid learns; each batch weighs in the image by its
 // precision as predicted before it ran (render/film.h).
+// Options: adaptive_options.h.
 #pragma once
 
 #include <memory>
 
 #include "emission/strategy.h"
+#include "emission/strategy_registry.h"
 
 namespace fen {
 
@@ -41,7 +43,7 @@ public:
 std::unique_ptr<AdaptiveStrategy> makeAdaptiveStrategy(const EmissionSettings& settings,
                                                        const EmissionInputs& in);
 
-// The option ranges, checked before anything is built (fen::Error naming the option).
-void validateAdaptiveOptions(const AdaptiveOptions& o);
+// Its descriptor (strategy_registry.h).
+extern const StrategyDescriptor kAdaptiveStrategy;
 
 }  // namespace fen

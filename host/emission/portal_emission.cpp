@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "emission/light_levels.h"
 #include "sky/goniogram.h"
 #include "util/error.h"
 

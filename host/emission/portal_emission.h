@@ -28,7 +28,9 @@
 
 #include "bvh_flat.h"
 #include "emission/portals.h"
-#include "emission/source_table.h"
+#include "shared/fen_emission.h"
+#include "sky/sky_tables.h"
+#include "util/integer_cdf.h"
 
 namespace fen {
 

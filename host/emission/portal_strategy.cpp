@@ -1,10 +1,13 @@
-// portal_strategy.cpp — the `portal` strategy's buffers and report (portal_strategy.h).
+// portal_strategy.cpp — the `portal` strategy's buffers, report, warning and descriptor
+// (portal_strategy.h).
 #include "emission/portal_strategy.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "cl/launch.h"
+#include "emission/uniform_emission.h"
 #include "trace/device_bvh.h"
 #include "io/state_io.h"
 #include "util/error.h"
@@ -13,6 +16,9 @@
 namespace fen {
 
 namespace {
+
+// The strategy warns when its complement paths carry more than this share of the light.
+constexpr double kUnreachedWarning = 0.01;
 
 const char* overlapName(PortalOverlap o)
 {
@@ -27,13 +33,12 @@ const char* overlapName(PortalOverlap o)
 class PortalStrategy final : public EmissionStrategy {
 public:
     PortalStrategy(const EmissionSettings& settings, const EmissionInputs& in)
-        : ctx_(in.ctx), sky_(in.deviceSky), overlap_(settings.overlap), complement_(settings.portalComplement),
+        : ctx_(in.ctx), sky_(in.deviceSky), overlap_(settings.portal.overlap), complement_(settings.portal.complement),
           fixedScale_(in.pixelFixedScale),
           pe_(setupPortalEmission(in.scene, in.sky, in.goniogram, settings.portals, in.bvhWidth)),
           uniform_(setupUniformEmission(in.scene, in.sky, in.goniogram))
     {
-        if (!(complement_ >= 0.0 && complement_ <= 0.5))
-            throw Error(cat("--portal-complement ", complement_, " must be in 0..0.5"));
+        validatePortalOptions(settings.portal);
         ocl::Context& c = in.ctx;
         // Sky paths: factor_k sin(theta) times 1 -- the portal part A_g |v.n_g| / P(g | bin) comes
         // in per path (lib/emit_portal.h).
@@ -45,8 +50,8 @@ public:
         // and the count (a traversal of the portals' BVH per path: 23 ns of a path's 141 of
         // emission on the inner room, whose two planes need it) is skipped -- the same paths and
         // weights (PortalSampling.OnePlaneNeedsNoCount; README "Portal emission").
-        overlapCounted_ = settings.overlap != PortalOverlap::None && !pe_.portals.singlePlane();
-        pp.overlap = overlapCounted_ ? static_cast<std::uint32_t>(settings.overlap) : FEN_OVERLAP_NONE;
+        overlapCounted_ = overlap_ != PortalOverlap::None && !pe_.portals.singlePlane();
+        pp.overlap = overlapCounted_ ? static_cast<std::uint32_t>(overlap_) : FEN_OVERLAP_NONE;
         pp.complement = static_cast<float>(complement_);
         pp.group_alias_shift = pe_.groupAliasShift;
         portalParams_ = c.buffer(CL_MEM_READ_ONLY, sizeof pp, "portal parameters", &pp);
@@ -75,7 +80,15 @@ public:
     }
 
     EmissionMethod method() const override { return EmissionMethod::Portal; }
-    std::string emitProgram() const override { return "emit_portal.cl"; }
+    // With a complement, connect.cl adds up what the portal paths and the complement's deliver.
+    EmissionKernels kernels() const override
+    {
+        EmissionKernels k;
+        k.emitProgram = "emit_portal.cl";
+        k.gatherStats = complement_ > 0.0;
+        k.cellStats = &stats_;
+        return k;
+    }
     void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
     {
         ocl::setKernelArgsFrom(emit, first, sourceParams_, alias_, sky_.theta, sky_.phi, sky_.values,
@@ -83,7 +96,6 @@ public:
                                cdf_, vertices_, bvh_->nodes(),
                                bvh_->packets(), uniformParams_, uniformAlias_, uniformFactor_);
     }
-    bool learns() const override { return complement_ > 0.0; }
     // Through the portals (overlaps counted once per portal, so an upper bound), and with a
     // complement also the rest of the flux into the scene's box, which its paths carry.
     double emittedFluxPerPath() const override
@@ -91,7 +103,6 @@ public:
         const double portals = pe_.sunFlux_lm + pe_.skyFlux_lm;
         return complement_ > 0.0 ? std::max(portals, uniform_.sunFlux + uniform_.skyFlux) : portals;
     }
-    const cl::Buffer& cellStats() const override { return stats_; }
     // The complement's share of the light that reached the camera in the batch just ended.
     void afterPaths(std::uint64_t, bool batchEnd) override
     {
@@ -121,6 +132,24 @@ public:
                 {"precompute_seconds", pe_.precomputeSeconds},
                 {"complement", complement_},
                 {"unreached", unreached()}};
+    }
+
+    // The portals' blind spot, when the complement measured it significantly.
+    std::vector<std::string> warnings() const override
+    {
+        const nlohmann::json u = unreached();
+        if (!u.is_object())
+            return {};
+        const double share = u["share"], se = u["std_err"];
+        if (!(share > kUnreachedWarning && share > 2.0 * se))
+            return {};
+        char line[400];
+        std::snprintf(line, sizeof line,
+                      "%.1f %% (+- %.1f) of the light reaching the camera does not pass through the marked "
+                      "portals (reflected from outside, or an unmarked opening): the portal image misses it; "
+                      "--method adaptive does not",
+                      100.0 * share, 100.0 * se);
+        return {line};
     }
 
     // The complement's share over the batches: mean and standard error (null without a complement).
@@ -160,5 +189,17 @@ std::unique_ptr<EmissionStrategy> makePortalStrategy(const EmissionSettings& set
 {
     return std::make_unique<PortalStrategy>(settings, in);
 }
+
+// Roulette from the 3rd interaction: its paths are aimed in from the start
+// (docs/results/termination.md).
+const StrategyDescriptor kPortalStrategy = {
+    EmissionMethod::Portal,
+    "portal",
+    3,
+    makePortalOptionBlock,
+    [](const EmissionSettings&) { return true; },
+    portalFingerprint,
+    makePortalStrategy,
+};
 
 }  // namespace fen

@@ -24,7 +24,6 @@
 #include "io/png_preview.h"
 #include "render/camera_setup.h"
 #include "render/image_stats.h"
-#include "emission/adaptive_strategy.h"
 #include "render/renderer.h"
 #include "scene/gltf_load.h"
 #include "sky/sky_spec.h"
@@ -33,9 +32,6 @@
 namespace fen {
 
 namespace {
-
-// A portal render warns when its complement paths carry more than this share of the light.
-constexpr double kUnreachedWarning = 0.01;
 
 // Ctrl-C or SIGTERM: the first asks the render to finish its batch in flight and write what it has;
 // a second one ends the process at once (the default action). Only async-signal-safe calls here.
@@ -80,79 +76,6 @@ std::string withExtension(const std::string& exrPath, const std::string& ext)
 }
 
 }  // namespace
-
-EmissionSettings emissionSettings(const RenderOptions& opt)
-{
-    EmissionSettings e;
-    e.method = parseEmissionMethod(opt.method);
-    e.overlap = parsePortalOverlap(opt.portalOverlap);
-    e.portals = opt.portals;
-    if (opt.portalComplement >= 0.0) {
-        if (e.method != EmissionMethod::Portal)
-            throw Error("--portal-complement applies to --method portal");
-        e.portalComplement = opt.portalComplement;
-    }
-    AdaptiveOptions& a = e.adaptive;
-    a.base = parseEmissionMethod(opt.base);
-    const bool adaptive = e.method == EmissionMethod::Adaptive;
-    const bool portalsUsed = e.method == EmissionMethod::Portal || (adaptive && a.base == EmissionMethod::Portal);
-    if (!opt.portals.empty() && !portalsUsed)
-        throw Error("--portals applies to --method portal and to --method adaptive --base portal");
-    if (opt.base != "uniform" && !adaptive)
-        throw Error("--base applies to --method adaptive");
-    if (a.base == EmissionMethod::Adaptive)
-        throw Error("--base 'adaptive': expected uniform or portal");
-    const bool tuned = !opt.adaptiveEstimate.empty() || opt.adaptiveInitialSkyDepth >= 0 || opt.adaptiveMaxSkyDepth >= 0 || opt.adaptiveInitialDepth >= 0 || opt.adaptiveMaxDepth >= 0 ||
-                       opt.adaptiveDefensive >= 0.0 || opt.adaptiveDiskShare >= 0.0 || opt.adaptiveSplit >= 0.0 ||
-                       opt.adaptiveFirstPass > 0 || opt.adaptiveMaxCells > 0 || opt.adaptivePrior >= 0.0 ||
-                       !opt.adaptiveWeights.empty() || !opt.adaptiveTarget.empty() || !opt.adaptiveGuide.empty() ||
-                       opt.adaptiveGuideShare >= 0.0 || opt.adaptiveGuideVoxels >= 0;
-    if (tuned && !adaptive)
-        throw Error("the --adaptive-* options apply to --method adaptive");
-    if (opt.adaptiveInitialSkyDepth >= 0)
-        a.initialSkyDepth = opt.adaptiveInitialSkyDepth;
-    if (opt.adaptiveMaxSkyDepth >= 0)
-        a.maxSkyDepth = opt.adaptiveMaxSkyDepth;
-    if (opt.adaptiveEstimate == "squares")
-        a.estimate = GridEstimate::Squares;
-    else if (!opt.adaptiveEstimate.empty() && opt.adaptiveEstimate != "pooled")
-        throw Error(cat("--adaptive-estimate '", opt.adaptiveEstimate, "': expected pooled or squares"));
-    if (opt.adaptiveInitialDepth >= 0)
-        a.initialDepth = opt.adaptiveInitialDepth;
-    if (opt.adaptiveMaxDepth >= 0)
-        a.maxDepth = opt.adaptiveMaxDepth;
-    if (opt.adaptiveDefensive >= 0.0)
-        a.defensive = opt.adaptiveDefensive;
-    if (opt.adaptiveDiskShare >= 0.0)
-        a.diskShare = opt.adaptiveDiskShare;
-    if (opt.adaptiveSplit >= 0.0)
-        a.splitGain = opt.adaptiveSplit;
-    if (opt.adaptiveFirstPass > 0)
-        a.firstPass = opt.adaptiveFirstPass;
-    if (opt.adaptiveMaxCells > 0)
-        a.maxCells = opt.adaptiveMaxCells;
-    if (opt.adaptivePrior >= 0.0)
-        a.priorPaths = opt.adaptivePrior;
-    if (opt.adaptiveWeights == "equal")
-        a.weighBatches = false;
-    else if (!opt.adaptiveWeights.empty() && opt.adaptiveWeights != "predicted")
-        throw Error(cat("--adaptive-weights '", opt.adaptiveWeights, "': expected predicted or equal"));
-    if (opt.adaptiveTarget == "relative" || opt.adaptiveTarget == "absolute")
-        a.relativeTarget = opt.adaptiveTarget == "relative";
-    else if (!opt.adaptiveTarget.empty())
-        throw Error(cat("--adaptive-target '", printable(opt.adaptiveTarget, 40), "': expected relative or absolute"));
-    if (opt.adaptiveGuide == "on" || opt.adaptiveGuide == "off")
-        a.guide.enabled = opt.adaptiveGuide == "on";
-    else if (!opt.adaptiveGuide.empty())
-        throw Error(cat("--adaptive-guide '", printable(opt.adaptiveGuide, 40), "': expected on or off"));
-    if (opt.adaptiveGuideShare >= 0.0)
-        a.guide.share = opt.adaptiveGuideShare;
-    if (opt.adaptiveGuideVoxels >= 0)
-        a.guide.voxelsAcross = opt.adaptiveGuideVoxels;
-    if (adaptive)
-        validateAdaptiveOptions(a);
-    return e;
-}
 
 // --checkpoint-every: "10min", "30 s", "4 batches" (units: min, m, s, batches, b).
 void parseCheckpointEvery(const std::string& text, RenderSettings* s)
@@ -222,7 +145,7 @@ int runRender(const RenderOptions& opt)
     const auto t0 = std::chrono::steady_clock::now();
     if (opt.outPath.size() < 5 || opt.outPath.substr(opt.outPath.size() - 4) != ".exr")
         throw Error(cat("--out '", opt.outPath, "' must name an .exr file"));
-    const EmissionSettings emission = emissionSettings(opt);
+    const EmissionSettings emission = opt.emission.settings();
     if (opt.paths > 0 && opt.timeSeconds > 0.0)
         throw Error("give either --paths or --time, not both");
     if (opt.timeSeconds < 0.0 || (opt.timeSeconds == 0.0 && opt.paths == 0))
@@ -294,12 +217,10 @@ int runRender(const RenderOptions& opt)
     settings.poolSize = opt.poolSize;
     if (!opt.kernels.empty())
         settings.kernels = parseKernelMode(opt.kernels);
-    settings.rouletteDepth = opt.rouletteDepth;  // -1: the renderer takes the method's
-    if (opt.split != RenderOptions::kUnset)
-        settings.splitMax = opt.split;
-    if (!std::isnan(opt.splitWeight))
-        settings.splitWeight = opt.splitWeight;
-    settings.progress = opt.progress < 0 ? isatty(STDERR_FILENO) != 0 : opt.progress > 0;
+    settings.rouletteDepth = opt.rouletteDepth;  // not given: the renderer takes the method's
+    settings.splitMax = opt.split.value_or(settings.splitMax);
+    settings.splitWeight = opt.splitWeight.value_or(settings.splitWeight);
+    settings.progress = opt.progress.value_or(isatty(STDERR_FILENO) != 0);
     settings.rois = {roi};
     for (const auto& reg : regions)
         settings.rois.push_back(reg.second);
@@ -364,7 +285,7 @@ int runRender(const RenderOptions& opt)
     j["sun"] = sunJson(scene.sun);
     j["sky"] = skyJson(scene.sky, sky);
     j["device"] = ctx.info().label();
-    j["method"] = opt.method;
+    j["method"] = methodName(r.method);
     j["width"] = width;
     j["height"] = height;
     j["seed"] = opt.seed;
@@ -458,16 +379,9 @@ int runRender(const RenderOptions& opt)
     if (st.rmse_cd_m2)
         std::printf(", RMSE %.4g, relMSE %.4g", *st.rmse_cd_m2, *st.relMse);
     std::printf("\nalso wrote %s, %s and %s\n", pngPath.c_str(), jsonPath.c_str(), noisePath.c_str());
-    // Portal emission's blind spot, measured by its complement paths (emission/portal_strategy.h).
-    if (r.emission.contains("unreached") && r.emission["unreached"].is_object()) {
-        const double share = r.emission["unreached"]["share"], se = r.emission["unreached"]["std_err"];
-        if (share > kUnreachedWarning && share > 2.0 * se)
-            std::fprintf(stderr,
-                         "fenestra: warning: %.1f %% (+- %.1f) of the light reaching the camera does not pass "
-                         "through the marked portals (reflected from outside, or an unmarked opening): "
-                         "the portal image misses it; --method adaptive does not\n",
-                         100.0 * share, 100.0 * se);
-    }
+    // What the strategy wants the user to know (e.g. portal emission's measured blind spot).
+    for (const std::string& w : r.emissionWarnings)
+        std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
     if (n.badContributions || n.overflows)
         std::fprintf(stderr,
                      "fenestra: warning: %llu non-finite contributions and %llu fixed-point "

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "emission/emission_sphere.h"
+#include "emission/light_levels.h"
 #include "io/state_io.h"
 #include "render/camera_setup.h"
 #include "render/checkpoint.h"
@@ -29,7 +31,7 @@ double since(Clock::time_point t0)
 // The settings with what they leave to the method filled in.
 RenderSettings withMethodDefaults(RenderSettings s)
 {
-    if (s.rouletteDepth < 0)
+    if (!s.rouletteDepth)
         s.rouletteDepth = defaultRouletteDepth(s.emission.method);
     return s;
 }
@@ -52,9 +54,10 @@ struct Renderer::Impl {
     Film film;
     std::unique_ptr<EmissionStrategy> strategy;
     std::uint32_t pool;
-    std::unique_ptr<Wavefront> wavefront;
+    std::unique_ptr<PathLoop> loop;
     CameraSpec camera;
     std::uint64_t sceneHash_ = 0;  // only when checkpointing or resuming
+    bool steersByPixel = false;    // the strategy wants the image so far (imageEstimate)
 
     // Progress reporting across batches.
     std::uint64_t pathsDone = 0, pathsTotal = 0, raysDone = 0;
@@ -73,7 +76,7 @@ struct Renderer::Impl {
         camera = cam;
         if (!st.checkpointPath.empty() || !st.resumePath.empty())
             sceneHash_ = sceneHash(s);
-        wavefront = std::make_unique<Wavefront>(c, scene, *strategy, film, sky, makeDevCamera(cam, w, h), pool,
+        loop = std::make_unique<PathLoop>(c, scene, *strategy, film, sky, makeDevCamera(cam, w, h), pool,
                                                 st.kernels ? *st.kernels : defaultKernelMode(c.info().isGpu()));
         dev::RenderParams p{};
         glm::dvec3 centre;
@@ -87,17 +90,19 @@ struct Renderer::Impl {
         p.seed = st.seed;
         p.max_depth = static_cast<std::uint32_t>(st.maxBounces);
         p.fixed_scale = film.fixedScale();
-        p.stats_scale = static_cast<float>(strategy->statsScale());
+        const EmissionKernels ek = strategy->kernels();
+        steersByPixel = ek.statsPixelScale != nullptr;
+        p.stats_scale = static_cast<float>(ek.statsScale);
         p.sky_theta_nodes = skyTables.thetaNodes;
         p.sky_phi_nodes = skyTables.phiNodes;
         p.pool_size = pool;
         p.camera_spp = static_cast<std::uint32_t>(st.cameraSpp);
-        p.rr_depth = static_cast<std::uint32_t>(settings.rouletteDepth);  // resolved, never -1
+        p.rr_depth = static_cast<std::uint32_t>(*settings.rouletteDepth);  // resolved: always set
         p.split_max = static_cast<std::uint32_t>(st.splitMax);
         p.split_weight = static_cast<float>(st.splitWeight * strategy->emittedFluxPerPath());
         if (!(p.split_weight > 0.0f))
             p.split_max = 1u;  // no light emitted: nothing to split
-        wavefront->setParams(p);
+        loop->setParams(p);
     }
 
     bool stopping() const { return settings.stop && settings.stop->load(); }
@@ -129,7 +134,7 @@ struct Renderer::Impl {
     // between batches, so a resumed render sees what the uninterrupted one saw.
     void estimateImage(const BatchStatistics* stats, std::uint64_t paths)
     {
-        if (!strategy->statsPixelScale())
+        if (!steersByPixel)
             return;
         std::vector<double> Y(film.pixels());
         if (stats && stats->batches() > 0) {
@@ -144,7 +149,7 @@ struct Renderer::Impl {
         strategy->imageEstimate(Y);
     }
 
-    // The emission table picks of paths [first, first + n), one run of the wavefront (a batch, or a
+    // The emission table picks of paths [first, first + n), one run of the path loop (a batch, or a
     // learning pass within one): one sweep of a lattice over them at an offset drawn from the seed
     // and `first` (kernels/lib/emit_source.h emission_pick_bits). Per run, not per batch: a
     // learning strategy's pass must see every column of its table, as its statistics assume.
@@ -152,9 +157,9 @@ struct Renderer::Impl {
     {
         dev::RngBlock ctr{static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(first >> 32), 0u,
                           FEN_RNG_PICK_LATTICE};
-        const std::uint32_t offset = dev::fen_philox4x32_10(ctr, settings.seed, 0x1a771ceu).x;
+        const std::uint32_t offset = dev::fen_philox4x32_10(ctr, settings.seed, FEN_RNG_STREAM_PICK_LATTICE).x;
         const double step = std::ldexp(1.0, 32) / static_cast<double>(std::max<std::uint64_t>(n, 1));
-        wavefront->setPickLattice(offset, static_cast<std::uint32_t>(std::clamp(std::round(step), 1.0, 4294967295.0)));
+        loop->setPickLattice(offset, static_cast<std::uint32_t>(std::clamp(std::round(step), 1.0, 4294967295.0)));
     }
 
     // Runs paths [base, base + count) as one batch, in the strategy's passes, and returns its
@@ -163,7 +168,7 @@ struct Renderer::Impl {
                                  BatchCounts& counts, const BatchStatistics* stats)
     {
         film.clear();
-        wavefront->beginBatch();
+        loop->beginBatch();
         const auto onIteration = [this](std::uint64_t paths, std::uint64_t rays) {
             pathsDone += paths;
             raysDone += rays;
@@ -173,7 +178,7 @@ struct Renderer::Impl {
         while (done < count) {
             const std::uint64_t n = std::min(count - done, std::max<std::uint64_t>(1, strategy->passLimit()));
             setPickLattice(base + done, n);
-            wavefront->run(base + done, n, counts, onIteration);
+            loop->run(base + done, n, counts, onIteration);
             done += n;
             strategy->afterPaths(n, done == count);
             // A counted batch's end is estimated from the counted batches, batch included, by
@@ -182,7 +187,7 @@ struct Renderer::Impl {
                 estimateImage(stats, done);
         }
         const std::uint64_t shadowBefore = counts.shadowRays;
-        wavefront->endBatch(batch, counts);
+        loop->endBatch(batch, counts);
         raysDone += counts.shadowRays - shadowBefore;
         return film.read(count);
     }
@@ -191,7 +196,6 @@ struct Renderer::Impl {
     nlohmann::json fingerprint() const
     {
         const EmissionSettings& e = settings.emission;
-        const AdaptiveOptions& a = e.adaptive;
         const auto v3 = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
         nlohmann::json rois = nlohmann::json::array();
         for (const Roi& q : settings.rois)
@@ -211,30 +215,15 @@ struct Renderer::Impl {
                 {"batches", settings.batches},
                 {"camera_spp", settings.cameraSpp},
                 {"max_bounces", settings.maxBounces},
-                {"roulette_depth", settings.rouletteDepth},
+                {"roulette_depth", *settings.rouletteDepth},
                 {"split_max", settings.splitMax},
                 {"split_weight", settings.splitWeight},
                 {"rois", rois},
                 {"method", methodName(e.method)},
                 {"portals", e.portals},
-                {"portal_overlap", static_cast<int>(e.overlap)},
-                {"portal_complement", e.portalComplement},
-                {"adaptive", {{"base", methodName(a.base)},
-                              {"initial_depth", a.initialDepth},
-                              {"max_depth", a.maxDepth},
-                              {"initial_sky_depth", a.initialSkyDepth},
-                              {"max_sky_depth", a.maxSkyDepth},
-                              {"estimate", static_cast<int>(a.estimate)},
-                              {"defensive", a.defensive},
-                              {"disk_share", a.diskShare},
-                              {"split_gain", a.splitGain},
-                              {"prior_paths", a.priorPaths},
-                              {"weigh_batches", a.weighBatches},
-                              {"first_pass", a.firstPass},
-                              {"max_cells", a.maxCells},
-                              {"guide", a.guide.enabled},
-                              {"guide_share", a.guide.share},
-                              {"guide_voxels", a.guide.voxelsAcross}}}};
+                // the strategy's own settings (strategy_registry.h), after "method" so that a
+                // checkpoint of another method is refused by naming it
+                {"method_options", {{methodName(e.method), strategyDescriptor(e.method).fingerprint(e)}}}};
     }
 
     // Where the batch loop stands; with the strategy's and the statistics' state, a checkpoint.
@@ -299,11 +288,11 @@ struct Renderer::Impl {
     {
         RenderResult r;
         r.bvhSeconds = scene.bvhBuildSeconds();
-        r.kernelBuildSeconds = wavefront->kernelBuildSeconds();
+        r.kernelBuildSeconds = loop->kernelBuildSeconds();
         r.bvhWidth = scene.bvh().width();
         r.poolSize = pool;
-        r.kernelMode = wavefront->mode();
-        r.rouletteDepth = settings.rouletteDepth;
+        r.kernelMode = loop->mode();
+        r.rouletteDepth = *settings.rouletteDepth;
         r.method = strategy->method();
         const int batches = std::max(2, settings.batches);
         BatchStatistics stats(film.width(), film.height(), settings.rois);
@@ -402,6 +391,7 @@ struct Renderer::Impl {
         r.roiBatchMeans = stats.roiBatchMeans();
         r.batchWeights = stats.weights();
         r.emission = strategy->report();
+        r.emissionWarnings = strategy->warnings();
         r.emittedFluxPerPath = strategy->emittedFluxPerPath();
         r.kernels = ctx.stats().entries();
         return r;
@@ -439,11 +429,6 @@ double RenderResult::roiMeanStdErr(std::size_t k) const
     return std::sqrt(ss / static_cast<double>(v.size() - 1) / W);
 }
 
-int defaultRouletteDepth(EmissionMethod method)
-{
-    return method == EmissionMethod::Uniform ? 5 : 3;
-}
-
 Renderer::Renderer(ocl::Context& ctx, const Scene& scene, const std::optional<Goniogram>& sky,
                    const CameraSpec& camera, int width, int height, const RenderSettings& settings)
 {
@@ -454,8 +439,8 @@ Renderer::Renderer(ocl::Context& ctx, const Scene& scene, const std::optional<Go
                         "compares batches)"));
     if (settings.maxBounces < 1)
         throw Error(cat("--max-bounces ", settings.maxBounces, " must be at least 1"));
-    if (settings.rouletteDepth < -1 || settings.rouletteDepth > 64)
-        throw Error(cat("--roulette-depth ", settings.rouletteDepth, " must be in 0..64"));
+    if (settings.rouletteDepth && (*settings.rouletteDepth < 0 || *settings.rouletteDepth > 64))
+        throw Error(cat("--roulette-depth ", *settings.rouletteDepth, ": must be in 0..64"));
     if (settings.splitMax < 1 || settings.splitMax > 255)
         throw Error(cat("--split ", settings.splitMax, " must be in 1..255 branches (1: never split)"));
     if (!(settings.splitWeight > 0.0 && settings.splitWeight <= 1e6))

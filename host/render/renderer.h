@@ -1,6 +1,6 @@
 // renderer.h — a render from start to finish (DESIGN.md §2, §4, §5): the scene on the device, the
-// emission strategy (emission/strategy.h), the film (render/film.h), the wavefront stages
-// (render/wavefront.h), and the batch loop.
+// emission strategy (emission/strategy.h), the film (render/film.h), the stages in either kernel
+// form (render/path_loop.h), and the batch loop.
 //
 // Paths are rendered in B equal batches; each batch's pixels are accumulated in 128-bit fixed
 // point (bit-identical for a given seed and device) and folded into a running mean and sum of
@@ -24,9 +24,10 @@
 
 #include "cl/context.h"
 #include "emission/strategy.h"
+#include "emission/strategy_registry.h"
 #include "io/image.h"
 #include "render/image_stats.h"
-#include "render/wavefront.h"
+#include "render/path_loop.h"
 #include "scene/scene.h"
 #include "sky/goniogram.h"
 
@@ -42,13 +43,6 @@ struct BatchProgress {
     const BatchStatistics* stats = nullptr;
 };
 
-// Where Russian roulette starts when the settings leave it to the method: the most efficient K
-// across the inner room, the room and the bay window (docs/results/termination.md). 5 for
-// `uniform`, whose paths start outside the building and bounce there before any of their hits
-// sees the camera (1.74x the efficiency of 3 on the inner room, 0.95-0.97x on the others); 3 for
-// `portal` and `adaptive`, whose paths are aimed in from the start.
-int defaultRouletteDepth(EmissionMethod method);
-
 struct RenderSettings {
     EmissionSettings emission;
     std::uint64_t paths = 0;     // total light paths; 0 = use timeSeconds
@@ -60,9 +54,10 @@ struct RenderSettings {
     int bvhWidth = 0;            // 0 = the device's default layout
     std::uint32_t poolSize = 0;  // path slots; 0 = automatic
     std::optional<KernelMode> kernels;  // unset: defaultKernelMode(device is a GPU)
-    // Russian roulette from this surface interaction on (lib/shade_path.h); -1: the emission
-    // method's default, defaultRouletteDepth().
-    int rouletteDepth = -1;
+    // Russian roulette from this surface interaction on (lib/shade_path.h); unset: the emission
+    // method's default, the most efficient across the measured scenes (defaultRouletteDepth(),
+    // emission/strategy_registry.h; docs/results/termination.md).
+    std::optional<int> rouletteDepth;
     // Splitting at the first diffuse vertex (lib/shade_path.h): a path of weight Y >= 2 w, w =
     // splitWeight times the emitted flux per path, goes on as min(floor(Y / w), splitMax) branches.
     // splitMax 1: never.
@@ -99,9 +94,10 @@ struct RenderResult {
     int bvhWidth = 0;
     std::uint32_t poolSize = 0;
     KernelMode kernelMode = KernelMode::Wavefront;
-    int rouletteDepth = 0;            // the depth rendered with (the method's, when left at -1)
+    int rouletteDepth = 0;            // the depth rendered with (the method's, when not set)
     EmissionMethod method = EmissionMethod::Uniform;
     nlohmann::json emission;          // the strategy's report
+    std::vector<std::string> emissionWarnings;  // the strategy's (EmissionStrategy::warnings)
     double emittedFluxPerPath = 0.0;  // lm (EmissionStrategy::emittedFluxPerPath)
     std::map<std::string, ocl::KernelStats::Entry> kernels;
     // roiBatchMeans[k][b]: mean luminance of settings.rois[k] in batch b. Batches are independent,

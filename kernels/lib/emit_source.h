@@ -1,7 +1,7 @@
 /* emit_source.h — what every emission strategy shares (DESIGN.md §3): starting a path, the
  * direction a source sends light in from two uniforms the caller hands over, the source table of
  * `uniform` and `portal` (the sun, or one sky cell, from 32 random bits with exact probabilities;
- * host: host/emission/source_table.h), `uniform`'s lines into the scene's bounding box (also
+ * host: host/emission/uniform_emission.h), `uniform`'s lines into the scene's bounding box (also
  * the portal complement's), and moving an origin back outside the scene.
  */
 #ifndef FEN_EMIT_SOURCE_H

@@ -1,5 +1,5 @@
 /* guide.h — the first-bounce guide on the device (DESIGN.md §3.4; layout and statistics:
- * shared/fen_guide.h; learning: host/emission/first_bounce_guide.h).
+ * shared/fen_guide.h; learning: host/scatter/first_bounce_guide.h).
  *
  * At its first diffuse vertex a path finds its slot (voxel and facing side, hashed), draws a box b
  * of the 8 x 8 grid over the square from the slot's alias table (density d(b) = 64 P(b) there, the

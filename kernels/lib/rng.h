@@ -7,7 +7,7 @@
 #ifndef FEN_LIB_RNG_H
 #define FEN_LIB_RNG_H
 
-#include "shared/fen_rng.h" /* also the purposes FEN_RNG_*, one list for host and device */
+#include "shared/fen_rng.h" /* also the purposes and streams FEN_RNG_*, one list for host and device */
 
 static inline RngBlock rng_bits(uint seed, uint stream, uint c0, uint c1, uint c2, uint purpose)
 {
@@ -43,7 +43,7 @@ static inline float4 rng_floats(uint seed, uint stream, uint c0, uint c1, uint c
    choices) or floats. */
 static inline RngBlock rng_path_bits(uint seed, uint path_lo, uint path_hi, uint depth, uint purpose)
 {
-    return rng_bits(seed, 0x6a09e667u, path_lo, path_hi, depth, purpose);
+    return rng_bits(seed, FEN_RNG_STREAM_PATH, path_lo, path_hi, depth, purpose);
 }
 
 static inline float4 rng_path(uint seed, uint path_lo, uint path_hi, uint depth, uint purpose)
@@ -54,7 +54,7 @@ static inline float4 rng_path(uint seed, uint path_lo, uint path_hi, uint depth,
 /* Camera sample `sample` of pixel `pixel` in batch `batch`: a stream of its own. */
 static inline float4 rng_camera(uint seed, uint pixel, uint sample, uint batch)
 {
-    return rng_floats(seed, 0x3c6ef372u, pixel, sample, batch, FEN_RNG_CAMERA);
+    return rng_floats(seed, FEN_RNG_STREAM_CAMERA, pixel, sample, batch, FEN_RNG_CAMERA);
 }
 
 #endif /* FEN_LIB_RNG_H */

@@ -19,7 +19,7 @@
  * d(b)) -- v estimates what a unit of weight sent through the box delivers, per unit of the square
  * -- and how many such contributions there were. Times d(b) on the host, the sum of v^2 estimates
  * the box's integral of the squared delivery, which is what the variance under any other table
- * follows (host/emission/first_bounce_guide.h).
+ * follows (host/scatter/first_bounce_guide.h).
  * Invariants: struct size a multiple of 16 bytes; listed in fen_layout.h for the layout probe.
  */
 #ifndef FEN_GUIDE_H

@@ -1,4 +1,4 @@
-// integer_cdf_test.cpp — the source table's integer alias table (emission/source_table.h): every
+// integer_cdf_test.cpp — the source table's integer alias table (util/integer_cdf.h): every
 // entry must keep exactly the units its CDF gives it, since the path weights divide by them.
 // Exact counting over the columns, not sampling: a unit lost is a 2^-32 bias no test could see.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "emission/source_table.h"
+#include "util/integer_cdf.h"
 
 namespace fen {
 namespace {

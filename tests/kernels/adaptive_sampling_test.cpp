@@ -13,6 +13,8 @@
 
 #include "cl/launch.h"
 #include "emission/adaptive_strategy.h"
+#include "emission/emission_sphere.h"
+#include "emission/light_levels.h"
 #include "io/image.h"
 #include "sky/sky_spec.h"
 #include "support/cl_fixture.h"

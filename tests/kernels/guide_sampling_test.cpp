@@ -11,7 +11,7 @@
 #include <cmath>
 
 #include "cl/launch.h"
-#include "emission/first_bounce_guide.h"
+#include "scatter/first_bounce_guide.h"
 #include "support/cl_fixture.h"
 #include "support/statistics.h"
 

@@ -8,7 +8,9 @@
 #include <numeric>
 
 #include "cl/launch.h"
+#include "emission/light_levels.h"
 #include "emission/portal_emission.h"
+#include "emission/uniform_emission.h"
 #include "io/image.h"
 #include "render/device_scene.h"
 #include "sky/sky_spec.h"

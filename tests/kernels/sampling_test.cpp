@@ -6,7 +6,8 @@
 #include <cmath>
 
 #include "cl/launch.h"
-#include "emission/source_table.h"
+#include "sky/sky_tables.h"
+#include "util/integer_cdf.h"
 #include "sky/goniogram.h"
 #include "support/cl_fixture.h"
 #include "support/render_support.h"

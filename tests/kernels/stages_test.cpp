@@ -9,7 +9,7 @@
 #include <random>
 
 #include "cl/launch.h"
-#include "emission/first_bounce_guide.h"
+#include "scatter/first_bounce_guide.h"
 #include "io/image.h"
 #include "render/camera_setup.h"
 #include "render/device_scene.h"

@@ -10,7 +10,9 @@
 #include <cstdio>
 
 #include "cl/launch.h"
-#include "emission/source_table.h"
+#include "emission/emission_sphere.h"
+#include "emission/light_levels.h"
+#include "emission/uniform_emission.h"
 #include "emission/uniform_strategy.h"
 #include "io/image.h"
 #include "shared/fen_render.h"

@@ -13,7 +13,8 @@ namespace fen {
 namespace {
 
 RenderResult renderRoom(ocl::Context& ctx, std::uint32_t seed, std::uint32_t pool,
-                        EmissionMethod method = EmissionMethod::Uniform, int rouletteDepth = -1)
+                        EmissionMethod method = EmissionMethod::Uniform,
+                        std::optional<int> rouletteDepth = std::nullopt)
 {
     const Scene scene = loadGltf(std::string(FEN_SCENES_DIR) + "/room.gltf");
     const auto sky = buildSky(scene.sky);
@@ -47,9 +48,9 @@ TEST(Determinism, SameSeedGivesBitIdenticalImages)
     EXPECT_NE(0, std::memcmp(a.image.rgb.data(), c.image.rgb.data(), a.image.rgb.size() * 4));
 }
 
-// Settings that leave the roulette depth to the method (-1, RenderSettings' default) render what
+// Settings that leave the roulette depth to the method (unset, RenderSettings' default) render what
 // the method's default depth renders, bit for bit: the renderer hands the kernels the resolved
-// depth, never -1 (which, as an unsigned depth, would turn roulette off).
+// depth.
 TEST(Determinism, TheMethodsRouletteDefaultIsTheDepthRendered)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);

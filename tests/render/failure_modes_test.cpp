@@ -46,7 +46,7 @@ TEST_P(ReflectedLight, PortalsMissItAndSayItAdaptiveDoesNot)
     // share to be measured against the shortfall at this budget; the image is the portals' alone.
     EmissionSettings pe;
     pe.method = EmissionMethod::Portal;
-    pe.portalComplement = 0.25;
+    pe.portal.complement = 0.25;
     const Measured p = measure(*ctx, scene, pe, c.portalPaths, 48, 36, kWhole);
     std::printf("[ failure  ] %s: uniform %.5g +- %.3g, portal %.5g +- %.3g (%.2fx), unreached %s\n", c.scene, u.mean,
                 u.se, p.mean, p.se, p.mean / u.mean, p.emission["unreached"].dump().c_str());

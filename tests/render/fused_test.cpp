@@ -21,7 +21,7 @@ struct Case {
     const char* scene;
     EmissionMethod method;
     EmissionMethod base;
-    int rouletteDepth;
+    std::optional<int> rouletteDepth;  // unset: the method's default
     int splitMax = 1;
     double splitWeight = 1.0;
     bool guide = false;
@@ -85,7 +85,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"uniform", "room.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform, 0},
                       Case{"uniform_rr3", "room.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform, 3},
                       // -1: the method's default depth (5 for uniform, render/renderer.h)
-                      Case{"uniform_default_depth", "room.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform, -1},
+                      Case{"uniform_default_depth", "room.gltf", EmissionMethod::Uniform, EmissionMethod::Uniform, std::nullopt},
                       Case{"portal_glass", "bay_window.gltf", EmissionMethod::Portal, EmissionMethod::Uniform, 0},
                       Case{"adaptive", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, 0},
                       Case{"adaptive_portal", "inner_room.gltf", EmissionMethod::Adaptive, EmissionMethod::Portal, 2},

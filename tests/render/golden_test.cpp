@@ -35,8 +35,8 @@ TEST_P(GoldenImage, UnchangedByTheStrategySeam)
     const auto sky = buildSky(scene.sky);
     RenderSettings s;
     s.emission.method = g.method;
-    s.emission.overlap = g.overlap;
-    s.emission.portalComplement = 0.0;  // the images were made before the complement existed
+    s.emission.portal.overlap = g.overlap;
+    s.emission.portal.complement = 0.0;  // the images were made before the complement existed
     s.maxBounces = 64;                  // ... and before the default cap rose to 1024
     s.rouletteDepth = 0;                // ... and before roulette began at the third interaction
     s.paths = 1048576;

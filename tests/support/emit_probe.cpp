@@ -2,6 +2,7 @@
 #include "support/emit_probe.h"
 
 #include "cl/launch.h"
+#include "emission/emission_sphere.h"
 
 namespace fen { namespace test {
 

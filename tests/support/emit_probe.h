@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cl/context.h"
-#include "emission/source_table.h"
+#include "sky/sky_tables.h"
 #include "emission/strategy.h"
 #include "scene/scene.h"
 #include "shared/fen_render.h"

@@ -117,7 +117,7 @@ Measured measure(ocl::Context& ctx, const Scene& scene, EmissionMethod method, s
 {
     EmissionSettings e;
     e.method = method;
-    e.overlap = overlap;
+    e.portal.overlap = overlap;
     e.portals = portals;
     return measure(ctx, scene, e, paths, width, height, roi);
 }

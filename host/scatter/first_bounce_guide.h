@@ -1,5 +1,7 @@
 // first_bounce_guide.h — the first-bounce guide's tables, statistics and learning on the host
-// (DESIGN.md §3.4; device half: kernels/lib/guide.h, layout: kernels/shared/fen_guide.h).
+// (DESIGN.md §3.4; device half: kernels/lib/guide.h, layout: kernels/shared/fen_guide.h). A
+// scattering feature -- it steers a path's first diffuse bounce, in shade.cl -- so it lives with
+// the scattering code; the adaptive strategy owns one and learns it on its passes.
 //
 // Light that must bounce off something outside before it can enter (the ground in front of a
 // window, a sunlit wall across a courtyard) is what emission alone cannot steer: the emitted ray

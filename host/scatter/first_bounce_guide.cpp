@@ -1,14 +1,14 @@
 // first_bounce_guide.cpp — the first-bounce guide's learning (first_bounce_guide.h).
-#include "emission/first_bounce_guide.h"
+#include "scatter/first_bounce_guide.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numeric>
 
-#include "emission/source_table.h"
 #include "io/state_io.h"
 #include "util/error.h"
+#include "util/integer_cdf.h"
 #include "util/fixed_point.h"
 
 namespace fen {
@@ -24,10 +24,10 @@ constexpr int kStatsFixedPointBits = 20;
 void validateGuideOptions(const GuideOptions& o)
 {
     if (!(o.share > 0.0 && o.share <= 1.0))
-        throw Error(cat("--adaptive-guide-share ", o.share, " must be in (0, 1]: with 0 a direction the "
-                        "guide has not seen light from could never be drawn (bias)"));
+        throw Error(cat("--adaptive-guide-share ", o.share, ": must be in (0, 1] (with 0 a direction the "
+                        "guide has not seen light from could never be drawn: bias)"));
     if (o.voxelsAcross < 1 || o.voxelsAcross > 4096)
-        throw Error(cat("--adaptive-guide-voxels ", o.voxelsAcross, " must be in 1..4096"));
+        throw Error(cat("--adaptive-guide-voxels ", o.voxelsAcross, ": must be in 1..4096"));
     if (o.slots < 1 || o.slots > (1u << 20) || (o.slots & (o.slots - 1)) != 0)
         throw Error(cat("guide slots ", o.slots, " must be a power of 2 up to 2^20"));
     if (!(o.minConnections >= 1.0))

@@ -1,5 +1,5 @@
-// wavefront.cpp — the stage kernels and their loop (wavefront.h).
-#include "render/wavefront.h"
+// path_loop.cpp — the stage kernels and their loop, wavefront or fused (path_loop.h).
+#include "render/path_loop.h"
 
 #include <algorithm>
 #include <chrono>
@@ -37,9 +37,9 @@ std::uint32_t defaultPoolSlots(const ocl::DeviceInfo& device)
     return slots;
 }
 
-Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy,
-                     Film& film, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
-                     KernelMode mode)
+PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy,
+                   Film& film, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
+                   KernelMode mode)
     : ctx_(ctx), mode_(mode), strategy_(strategy), film_(film), pool_(pool)
 {
     paramsBuf_ = ctx.buffer(CL_MEM_READ_ONLY, sizeof(dev::RenderParams), "render parameters");
@@ -53,10 +53,11 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
 
     const auto t0 = std::chrono::steady_clock::now();
     const auto defs = scene.defines();
+    const EmissionKernels ek = strategy.kernels();
     auto connectDefs = defs;
-    if (strategy.learns())
+    if (ek.gatherStats)
         connectDefs.push_back("FEN_EMISSION_STATS=1");
-    const cl::Buffer* pixelScale = strategy.statsPixelScale();
+    const cl::Buffer* pixelScale = ek.statsPixelScale;
     if (pixelScale)
         connectDefs.push_back("FEN_STATS_PIXEL_SCALE=1");
     else
@@ -64,17 +65,17 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     if (mode == KernelMode::Fused) {
         auto fusedDefs = connectDefs;
         fusedDefs.push_back("FEN_FUSED=1");
-        fused_ = cl::Kernel(ctx.program(strategy.emitProgram(), fusedDefs), "trace_fused");
+        fused_ = cl::Kernel(ctx.program(ek.emitProgram, fusedDefs), "trace_fused");
         // Enough work-items to keep every compute unit busy while the last chunks drain.
         fusedItems_ = std::size_t{std::max<cl_uint>(1, ctx.info().computeUnits)} * 16;
     }
-    emit_ = cl::Kernel(ctx.program(strategy.emitProgram(), defs), "emit_paths");
+    emit_ = cl::Kernel(ctx.program(ek.emitProgram, defs), "emit_paths");
     intersect_ = cl::Kernel(ctx.program("intersect.cl", defs), "intersect_paths");
     shade_ = cl::Kernel(ctx.program("shade.cl", defs), "shade_paths");
     connect_ = cl::Kernel(ctx.program("connect.cl", connectDefs), "connect_paths");
     cameraPass_ = cl::Kernel(ctx.program("camera_pass.cl", defs), "camera_pass");
     const DeviceBvh& b = scene.bvh();
-    const FirstBounceGuide* guide = strategy.guide();
+    const FirstBounceGuide* guide = ek.guide;
     if (!guide)
         guide = (noGuide_ = std::make_unique<FirstBounceGuide>(ctx, GuideOptions{}, glm::dvec3(0.0), 1.0)).get();
     strategy.bindEmitArgs(emit_, 3);  // checks the arity: the strategy's arguments are the last
@@ -83,7 +84,7 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
         const cl::Buffer* fusedArgs[] = {&paramsBuf_, &counters_, &b.nodes(), &b.packets(),
                                          &scene.primMaterial(), &scene.materials(), &scene.primUv(),
                                          &scene.texels(), &cameraBuf_,
-                                         &film.accumulators(), &strategy.cellStats(), pixelScale,
+                                         &film.accumulators(), ek.cellStats, pixelScale,
                                          &guide->params(), &guide->tables(), &guide->stats()};
         for (const cl::Buffer* buf : fusedArgs)
             fused_.setArg(a++, *buf);
@@ -96,7 +97,7 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
                        scene.primUv(), scene.texels(), cameraBuf_, connections_, guide->params(), guide->tables(), counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
-                       scene.materials(), film.accumulators(), strategy.cellStats(), *pixelScale, guide->stats(),
+                       scene.materials(), film.accumulators(), *ek.cellStats, *pixelScale, guide->stats(),
                        counters_);
     ocl::setKernelArgs(cameraPass_, paramsBuf_, cameraBuf_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), sky.theta, sky.phi, sky.values, film.cameraImage(), counters_);
@@ -106,7 +107,7 @@ Wavefront::Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrate
 
 // PoCL compiles a kernel's work-group function at its first launch: do that here, on an empty
 // pool and an empty batch, so that render time is rendering.
-void Wavefront::warmUp()
+void PathLoop::warmUp()
 {
     auto& q = ctx_.queue();
     dev::RenderParams p{};
@@ -123,13 +124,13 @@ void Wavefront::warmUp()
     ctx_.stats().reset();
 }
 
-void Wavefront::beginBatch()
+void PathLoop::beginBatch()
 {
     ctx_.queue().enqueueFillBuffer(counters_, cl_ulong(0), 0, FEN_CTR_COUNT * 8);
     ctx_.queue().enqueueFillBuffer(paths_, cl_uchar(0), 0, std::size_t{pool_} * sizeof(dev::PathState));
 }
 
-void Wavefront::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+void PathLoop::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
                     const std::function<void(std::uint64_t, std::uint64_t)>& progress)
 {
     if (mode_ == KernelMode::Fused) {
@@ -171,7 +172,7 @@ void Wavefront::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts
 
 // In launches of at most 2^20 paths (about a second on two cores): progress stays live and an
 // interrupt waits for little.
-void Wavefront::runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+void PathLoop::runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
                          const std::function<void(std::uint64_t, std::uint64_t)>& progress)
 {
     auto& q = ctx_.queue();
@@ -197,7 +198,7 @@ void Wavefront::runFused(std::uint64_t base, std::uint64_t count, BatchCounts& c
     }
 }
 
-void Wavefront::endBatch(std::uint32_t batch, BatchCounts& counts)
+void PathLoop::endBatch(std::uint32_t batch, BatchCounts& counts)
 {
     auto& q = ctx_.queue();
     params_.batch = batch;

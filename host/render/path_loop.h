@@ -1,9 +1,10 @@
-// wavefront.h — the light-tracing stages on the device (DESIGN.md §2, §4): a pool of path slots
-// and per iteration emit -> intersect -> shade -> connect (kernels/*.cl), until a range of path
+// path_loop.h — the light-tracing stages on the device (DESIGN.md §2, §4), in either kernel form:
+// the wavefront (a pool of path slots and per iteration emit -> intersect -> shade -> connect,
+// kernels/*.cl) or the fused kernel (one kernel, whole paths per work-item), until a range of path
 // indices is all emitted and dead; and the camera pass for the sky seen directly.
 //
-// The emission stage is built with the strategy's definitions (emission/strategy.h); connect is
-// built to gather cell statistics when the strategy learns. Counters (shared/fen_render.h) are
+// The emission stage is built with the strategy's program and bound to its buffers; connect and
+// shade to its statistics and first-bounce guide (emission/strategy.h EmissionKernels). Counters (shared/fen_render.h) are
 // zeroed per batch and read back once per iteration; each launch is named and timed
 // (Context::stats()).
 #pragma once
@@ -44,9 +45,10 @@ struct BatchCounts {
     double cutFlux = 0.0;  // lm x paths: the flux of the paths --max-bounces cut
 };
 
-class Wavefront {
+// Runs ranges of paths through the stages, in the kernel form `mode`.
+class PathLoop {
 public:
-    Wavefront(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy, Film& film,
+    PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy, Film& film,
               const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
               KernelMode mode = KernelMode::Wavefront);
     KernelMode mode() const { return mode_; }

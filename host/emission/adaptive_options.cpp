@@ -1,0 +1,170 @@
+// adaptive_options.cpp — the `adaptive` strategy's option block, ranges and fingerprint
+// (adaptive_options.h).
+#include "emission/adaptive_options.h"
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "emission/strategy_registry.h"
+#include "util/error.h"
+
+namespace fen {
+
+namespace {
+
+// "on" | "off" style choices: the value, or a one-line error naming the option.
+bool choice(const std::string& option, const std::string& given, const char* yes, const char* no)
+{
+    if (given == yes || given == no)
+        return given == yes;
+    throw Error(cat(option, " '", printable(given, 40), "': expected ", yes, " or ", no));
+}
+
+class AdaptiveOptionBlock final : public StrategyOptionBlock {
+public:
+    void add(CLI::App& render) override
+    {
+        render.add_option("--base", base_,
+                          "With adaptive: the base density it learns over, uniform (default) or portal");
+        render.add_option("--adaptive-initial-sky-depth", initialSkyDepth_,
+                          "With adaptive: sky direction boxes to start with, 4^depth (default 1)");
+        render.add_option("--adaptive-max-sky-depth", maxSkyDepth_,
+                          "With adaptive: finest sky direction boxes, 2^-depth of a side (default 6)");
+        render.add_option("--adaptive-estimate", estimate_,
+                          "With adaptive: how a cell's second moment is estimated, pooled (default) or squares");
+        render.add_option("--adaptive-initial-depth", initialDepth_,
+                          "With adaptive: origin boxes per region to start with, 4^depth (default 3)");
+        render.add_option("--adaptive-max-depth", maxDepth_,
+                          "With adaptive: finest origin boxes, 2^-depth of the region's side (default 10)");
+        render.add_option("--adaptive-defensive", defensive_,
+                          "With adaptive: share of the base density kept in the mixture (default 0.1)");
+        render.add_option("--adaptive-disk-share", diskShare_,
+                          "With adaptive --base portal: the emission disk's share of the base (default 0.1)");
+        render.add_option("--adaptive-split", split_,
+                          "With adaptive: split a cell when that lowers the learned objective by this share (default 1/2048)");
+        render.add_option("--adaptive-first-pass", firstPass_,
+                          "With adaptive: paths of the first learning pass; passes double (default 65536)");
+        render.add_option("--adaptive-prior", prior_,
+                          "With adaptive: pseudo-paths of the prior in every cell (default 32)");
+        render.add_option("--adaptive-weights", weights_,
+                          "With adaptive: batches weigh by predicted precision, or all alike: predicted (default) or equal");
+        render.add_option("--adaptive-guide", guide_,
+                          "With adaptive: also learn where the first bounce sends light to the camera, on or off (default on)");
+        render.add_option("--adaptive-guide-share", guideShare_,
+                          "With adaptive --adaptive-guide on: the uniform share kept in every learned bounce table (default 0.25)");
+        render.add_option("--adaptive-guide-voxels", guideVoxels_,
+                          "With adaptive --adaptive-guide on: guide voxels across the scene's bounding radius (default 4)");
+        render.add_option("--adaptive-target", target_,
+                          "With adaptive: minimise the absolute (default) or the relative squared error per pixel");
+        render.add_option("--adaptive-max-cells", maxCells_,
+                          "With adaptive: most cells the grid may have (default 32768)");
+    }
+
+    void apply(EmissionSettings& e, bool inUse) const override
+    {
+        AdaptiveOptions& a = e.adaptive;
+        if (base_) {
+            a.base = parseEmissionMethod(*base_);
+            if (!inUse)
+                throw Error("--base applies to --method adaptive");
+            if (a.base == EmissionMethod::Adaptive)
+                throw Error("--base 'adaptive': expected uniform or portal");
+        }
+        const bool tuned = estimate_ || initialSkyDepth_ || maxSkyDepth_ || initialDepth_ || maxDepth_ ||
+                           defensive_ || diskShare_ || split_ || firstPass_ || maxCells_ || prior_ || weights_ ||
+                           target_ || guide_ || guideShare_ || guideVoxels_;
+        if (tuned && !inUse)
+            throw Error("the --adaptive-* options apply to --method adaptive");
+        if (!inUse)
+            return;
+        if (estimate_)
+            a.estimate = choice("--adaptive-estimate", *estimate_, "pooled", "squares") ? GridEstimate::Pooled
+                                                                                         : GridEstimate::Squares;
+        a.initialSkyDepth = initialSkyDepth_.value_or(a.initialSkyDepth);
+        a.maxSkyDepth = maxSkyDepth_.value_or(a.maxSkyDepth);
+        a.initialDepth = initialDepth_.value_or(a.initialDepth);
+        a.maxDepth = maxDepth_.value_or(a.maxDepth);
+        a.defensive = defensive_.value_or(a.defensive);
+        a.diskShare = diskShare_.value_or(a.diskShare);
+        a.splitGain = split_.value_or(a.splitGain);
+        a.firstPass = firstPass_.value_or(a.firstPass);
+        a.maxCells = maxCells_.value_or(a.maxCells);
+        a.priorPaths = prior_.value_or(a.priorPaths);
+        if (weights_)
+            a.weighBatches = choice("--adaptive-weights", *weights_, "predicted", "equal");
+        if (target_)
+            a.relativeTarget = choice("--adaptive-target", *target_, "relative", "absolute");
+        if (guide_)
+            a.guide.enabled = choice("--adaptive-guide", *guide_, "on", "off");
+        a.guide.share = guideShare_.value_or(a.guide.share);
+        a.guide.voxelsAcross = guideVoxels_.value_or(a.guide.voxelsAcross);
+        validateAdaptiveOptions(a);
+    }
+
+private:
+    std::optional<std::string> base_, estimate_, weights_, target_, guide_;
+    std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_;
+    std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_;
+    std::optional<std::uint64_t> firstPass_;
+    std::optional<std::uint32_t> maxCells_;
+};
+
+}  // namespace
+
+void validateAdaptiveOptions(const AdaptiveOptions& o)
+{
+    if (o.base != EmissionMethod::Uniform && o.base != EmissionMethod::Portal)
+        throw Error("--base: expected uniform or portal");
+    if (o.maxSkyDepth < 0 || o.maxSkyDepth > 12)
+        throw Error(cat("--adaptive-max-sky-depth ", o.maxSkyDepth, ": must be in 0..12"));
+    if (o.initialSkyDepth < 0 || o.initialSkyDepth > 5 || o.initialSkyDepth > o.maxSkyDepth)
+        throw Error(cat("--adaptive-initial-sky-depth ", o.initialSkyDepth, ": must be in 0..5 and at most "
+                        "--adaptive-max-sky-depth (", o.maxSkyDepth, ")"));
+    if (o.maxDepth < 0 || o.maxDepth > 16)
+        throw Error(cat("--adaptive-max-depth ", o.maxDepth, ": must be in 0..16"));
+    if (o.initialDepth < 0 || o.initialDepth > 6 || o.initialDepth > o.maxDepth)
+        throw Error(cat("--adaptive-initial-depth ", o.initialDepth, ": must be in 0..6 and at most "
+                        "--adaptive-max-depth (", o.maxDepth, ")"));
+    if (!(o.defensive > 0.0 && o.defensive <= 1.0))
+        throw Error(cat("--adaptive-defensive ", o.defensive, ": must be in (0, 1] (a share of 0 "
+                        "would let cells that have not shown light yet die: bias)"));
+    if (!(o.diskShare > 0.0 && o.diskShare < 1.0))
+        throw Error(cat("--adaptive-disk-share ", o.diskShare, ": must be in (0, 1) (with 0, light "
+                        "that does not start through a marked portal would be lost)"));
+    if (!(o.splitGain > 0.0 && o.splitGain <= 1.0))
+        throw Error(cat("--adaptive-split ", o.splitGain, ": must be in (0, 1]"));
+    if (o.firstPass < 1024 || o.firstPass > (std::uint64_t{1} << 40))
+        throw Error(cat("--adaptive-first-pass ", o.firstPass, ": must be in 1024..2^40 paths"));
+    if (!(o.priorPaths > 0.0 && o.priorPaths <= 1e9))
+        throw Error(cat("--adaptive-prior ", o.priorPaths, ": must be in (0, 10^9] pseudo-paths"));
+    if (o.maxCells < 1 || o.maxCells > (1u << 22))
+        throw Error(cat("--adaptive-max-cells ", o.maxCells, ": must be in 1..4194304"));
+    validateGuideOptions(o.guide);
+}
+
+std::unique_ptr<StrategyOptionBlock> makeAdaptiveOptionBlock() { return std::make_unique<AdaptiveOptionBlock>(); }
+
+nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
+{
+    const AdaptiveOptions& a = e.adaptive;
+    return {{"base", methodName(a.base)},
+            {"initial_depth", a.initialDepth},
+            {"max_depth", a.maxDepth},
+            {"initial_sky_depth", a.initialSkyDepth},
+            {"max_sky_depth", a.maxSkyDepth},
+            {"estimate", static_cast<int>(a.estimate)},
+            {"defensive", a.defensive},
+            {"disk_share", a.diskShare},
+            {"split_gain", a.splitGain},
+            {"prior_paths", a.priorPaths},
+            {"weigh_batches", a.weighBatches},
+            {"first_pass", a.firstPass},
+            {"max_cells", a.maxCells},
+            {"guide", a.guide.enabled},
+            {"guide_share", a.guide.share},
+            {"guide_voxels", a.guide.voxelsAcross}};
+}
+
+}  // namespace fen
