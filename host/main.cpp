@@ -89,55 +89,8 @@ int main(int argc, char** argv)
     benchCmd->add_option("--kernels", bench.kernels, "Render kernels: fused or wavefront (default: the device's)");
 
     fen::RenderOptions render;
-    std::string renderLayout;
-    bool progressOn = false, progressOff = false;
     auto* renderCmd = app.add_subcommand("render", "Light-trace a glTF scene to EXR + PNG + JSON");
-    renderCmd->add_option("scene", render.scenePath, "glTF scene (.gltf or .glb)")->required();
-    renderCmd->add_option("--out", render.outPath, "Output PATH.exr (PATH.png and PATH.json beside it)")
-        ->required();
-    // Signed, so that a negative count is an error rather than 2^64 - 1.
-    std::int64_t renderPaths = 0;
-    renderCmd->add_option("--paths", renderPaths, "Light paths to trace");
-    renderCmd->add_option("--time", render.timeSeconds, "Render for about this many seconds instead");
-    renderCmd->add_option("--width", render.width, "Image width (default: 640, or from --height)");
-    renderCmd->add_option("--height", render.height, "Image height (default: from the camera's aspect ratio)");
-    renderCmd->add_option("--camera", render.camera, "Camera node name (or camera name); default the first");
-    renderCmd->add_option("--seed", render.seed, "Random seed (default 1)");
-    renderCmd->add_option("--device", render.device, "OpenCL device: index or name substring");
-    renderCmd->add_option("--max-bounces", render.maxBounces, "Surface interactions per path: a guard against endless paths, Russian roulette ends them (default 1024)");
-    renderCmd->add_option("--roi", render.roi, "Region x0,y0,x1,y1 for the statistics (default: whole image)");
-    renderCmd->add_option("--region", render.regions,
-                          "Named region NAME=x0,y0,x1,y1 also reported in the JSON (regions.NAME); repeatable");
-    renderCmd->add_option("--reference", render.referencePath, "Reference EXR: report RMSE and relative MSE");
-    render.emission.add(*renderCmd);  // --method, --portals and every strategy's options
-    renderCmd->add_option("--layout", renderLayout, "BVH layout: bvh2, bvh4 or bvh8 (default: the device's)");
-    renderCmd->add_option("--batches", render.batches, "Independent batches for the noise estimate (default 16)");
-    renderCmd->add_option("--camera-spp", render.cameraSpp,
-                          "Camera-pass samples per pixel per batch, for the sky seen directly (default 1)");
-    renderCmd->add_option("--kernels", render.kernels,
-                          "How the stages run: fused (one kernel per path, default on a CPU) or wavefront (default on a GPU)");
-    std::string rouletteDefaults;  // each strategy's own (emission/strategy_registry.h)
-    for (const fen::StrategyDescriptor* d : fen::emissionStrategies())
-        rouletteDefaults += (rouletteDefaults.empty() ? "" : ", ") + std::to_string(d->rouletteDepth) + " for " + d->name;
-    renderCmd->add_option("--roulette-depth", render.rouletteDepth,
-                          "Russian roulette from this surface interaction on; before it every path goes on (default " +
-                              rouletteDefaults + ")");
-    renderCmd->add_option("--split", render.split,
-                          "At its first diffuse hit, a path weighing k >= 2 times the mean emitted weight goes on as min(k, N) "
-                          "branches of 1/k the weight (1: never; default 1)");
-    renderCmd->add_option("--split-weight", render.splitWeight,
-                          "With --split: the weight unit k counts in, as a multiple of the mean emitted weight (default 1)");
-    renderCmd->add_option("--pool", render.poolSize, "Path slots on the device (default: 2^16 CPU, 2^21 GPU)");
-    renderCmd->add_option("--exposure", render.exposure, "PNG preview exposure (default: ROI mean to mid-grey)");
-    renderCmd->add_option("--checkpoint", render.checkpointPath,
-                          "Save the render's state to this file now and then, and when interrupted");
-    renderCmd->add_option("--checkpoint-every", render.checkpointEvery,
-                          "How often: N min, N s or N batches (default 10min)");
-    renderCmd->add_option("--resume", render.resumePath,
-                          "Continue the render saved in this checkpoint (same scene and options)");
-    fen::addSkySunOptions(renderCmd, &render.skySun);
-    renderCmd->add_flag("--progress", progressOn, "Show progress even when stderr is not a terminal");
-    renderCmd->add_flag("--no-progress", progressOff, "Never show progress");
+    fen::addRenderOptions(*renderCmd, render);
 
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
@@ -165,21 +118,7 @@ int main(int argc, char** argv)
         if (*devices)
             return fen::runDevices(devicesJson);
         if (*renderCmd) {
-            if (!renderLayout.empty()) {
-                const auto w = parseWidths(renderLayout);
-                if (w.size() != 1)
-                    throw fen::Error("--layout takes one of bvh2, bvh4, bvh8");
-                render.bvhWidth = w[0];
-            }
-            if (progressOff || progressOn)
-                render.progress = !progressOff;
-            if (renderCmd->count("--paths")) {
-                if (renderPaths <= 0)
-                    throw fen::Error("--paths " + std::to_string(renderPaths) + ": must be a positive number of paths");
-                render.paths = static_cast<std::uint64_t>(renderPaths);
-            }
-            if (renderCmd->count("--exposure") && !(render.exposure > 0.0 && std::isfinite(render.exposure)))
-                throw fen::Error("--exposure " + std::to_string(render.exposure) + ": must be a positive, finite multiplier");
+            fen::validateRenderOptions(render);
             return fen::runRender(render);
         }
         if (*benchCmd) {

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/json_text.h"
 #include "io/output_files.h"
 #include "util/error.h"
 
@@ -77,7 +78,7 @@ bool firstDifference(const nlohmann::json& want, const nlohmann::json& have, con
     }
     if (want == have)
         return false;
-    *where = cat(at, " was ", printable(have.dump(), 80), ", not ", printable(want.dump(), 80));
+    *where = cat(at, " was ", printable(dumpUtf8(have), 80), ", not ", printable(dumpUtf8(want), 80));
     return true;
 }
 
@@ -156,7 +157,7 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& fingerprint,
 {
     const nlohmann::json header = {{"build", buildId()}, {"fingerprint", fingerprint}};
     std::string bytes = kMagic;
-    bytes += header.dump() + "\n";
+    bytes += dumpUtf8(header) + "\n";
     bytes += le64(payload.size());
     bytes += payload;
     Fnv f;
@@ -205,7 +206,7 @@ std::string readCheckpoint(const std::string& path, const nlohmann::json& finger
     if (fingerprint.contains("scene") && theirs.is_object() && theirs.contains("scene") &&
         theirs["scene"] != fingerprint["scene"])
         throw Error(cat(path, ": made for another render: the scene differs (content hash ",
-                        printable(theirs["scene"].dump(), 40), ", not ", fingerprint["scene"].dump(), ")"));
+                        printable(dumpUtf8(theirs["scene"]), 40), ", not ", printable(dumpUtf8(fingerprint["scene"]), 40), ")"));
     std::string where;
     if (firstDifference(fingerprint, theirs, "", &where))
         throw Error(cat(path, ": made for another render: ", where));

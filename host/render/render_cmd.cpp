@@ -20,7 +20,10 @@
 #include "cl/device.h"
 #include "io/exr_io.h"
 #include "io/image.h"
+#include "io/json_text.h"
 #include "io/output_files.h"
+#include "io/path_checks.h"
+#include "render/checkpoint.h"
 #include "io/png_preview.h"
 #include "render/camera_setup.h"
 #include "render/image_stats.h"
@@ -146,10 +149,8 @@ int runRender(const RenderOptions& opt)
     if (opt.outPath.size() < 5 || opt.outPath.substr(opt.outPath.size() - 4) != ".exr")
         throw Error(cat("--out '", opt.outPath, "' must name an .exr file"));
     const EmissionSettings emission = opt.emission.settings();
-    if (opt.paths > 0 && opt.timeSeconds > 0.0)
-        throw Error("give either --paths or --time, not both");
-    if (opt.timeSeconds < 0.0 || (opt.timeSeconds == 0.0 && opt.paths == 0))
-        throw Error("--paths must be positive, or --time a positive number of seconds");
+    const std::string checkpointPath = opt.checkpointPath.value_or(""), resumePath = opt.resumePath.value_or("");
+    const std::string referencePath = opt.referencePath.value_or("");
     // Every output's folder is created and proved writable, and no output is a folder, before a
     // long render rather than after it.
     const std::string pngPath = withExtension(opt.outPath, ".png");
@@ -158,19 +159,39 @@ int runRender(const RenderOptions& opt)
     const std::string errorPath = withExtension(opt.outPath, ".error.png");
     for (const std::string& p : {opt.outPath, pngPath, jsonPath, noisePath, errorPath})
         checkOutputPath(p, "--out");
-    if (!opt.checkpointPath.empty())
-        checkOutputPath(opt.checkpointPath, "--checkpoint");
+    if (!checkpointPath.empty()) {
+        checkOutputPath(checkpointPath, "--checkpoint");
+        requireCheckpointTarget(checkpointPath, "--checkpoint");
+    }
+    // Files read are regular files (a FIFO would block the read for ever).
+    if (!resumePath.empty())
+        requireRegularFile(resumePath, "--resume");
+    if (!referencePath.empty())
+        requireRegularFile(referencePath, "--reference");
     // One render at a time writes this set; what a killed one left is finished or removed first.
     std::vector<std::string> outputSet{opt.outPath, noisePath, pngPath, errorPath, jsonPath};
-    if (!opt.checkpointPath.empty())
-        outputSet.push_back(opt.checkpointPath);
+    if (!checkpointPath.empty())
+        outputSet.push_back(checkpointPath);
     const OutputSetLock outputLock(outputSet);
     if (!outputLock.recovered().empty())
-        std::fprintf(stderr, "fenestra: warning: %s: %s\n", opt.outPath.c_str(), outputLock.recovered().c_str());
-    if (!opt.resumePath.empty() && !std::ifstream(opt.resumePath))
-        throw Error(cat(opt.resumePath, ": cannot open the checkpoint (--resume): ", std::strerror(errno)));
+        std::fprintf(stderr, "fenestra: warning: %s: %s\n", printable(opt.outPath).c_str(), outputLock.recovered().c_str());
 
     Scene scene = loadGltf(opt.scenePath);
+    // No output may overwrite an input: the scene and the files it reads, the reference, and the
+    // checkpoint resumed from (except by the checkpoint itself: continuing one in place).
+    {
+        std::vector<std::pair<std::string, std::string>> inputs;
+        for (std::size_t i = 0; i < scene.files.size(); ++i)
+            inputs.emplace_back(i == 0 ? "the scene" : "a file the scene reads", scene.files[i]);
+        inputs.emplace_back("the --reference image", referencePath);
+        for (const std::string& out : {opt.outPath, pngPath, jsonPath, noisePath, errorPath})
+            refuseOverwritingInputs(out, "--out", inputs);
+        if (!checkpointPath.empty())
+            refuseOverwritingInputs(checkpointPath, "--checkpoint", inputs);
+        inputs = {{"the checkpoint to resume (--resume)", resumePath}};
+        for (const std::string& out : {opt.outPath, pngPath, jsonPath, noisePath, errorPath})
+            refuseOverwritingInputs(out, "--out", inputs);
+    }
     const SkySunReport skySun = applySkySunOptions(opt.skySun, &scene);
     for (const auto& w : scene.warnings)
         std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
@@ -179,8 +200,8 @@ int runRender(const RenderOptions& opt)
     const CameraSpec& camera = findCamera(scene, opt.camera);
     const std::optional<Goniogram> sky = buildSky(scene.sky);
     int width = 0, height = 0;
-    resolveImageSize(camera, opt.width, opt.height, &width, &height);
-    const Roi roi = parseRoi(opt.roi, width, height);
+    resolveImageSize(camera, opt.width.value_or(0), opt.height.value_or(0), &width, &height);
+    const Roi roi = parseRoi(opt.roi.value_or(""), width, height);
     // Named regions: a work plane, a wall -- each reported like the ROI (regions.NAME in the JSON).
     std::vector<std::pair<std::string, Roi>> regions;
     for (const std::string& spec : opt.regions) {
@@ -194,10 +215,10 @@ int runRender(const RenderOptions& opt)
         regions.emplace_back(name, parseRoi(spec.substr(eq + 1), width, height, "--region " + printable(name, 64)));
     }
     std::optional<Image> reference;
-    if (!opt.referencePath.empty()) {
-        reference = readExr(opt.referencePath);
+    if (!referencePath.empty()) {
+        reference = readExr(referencePath);
         if (reference->width != width || reference->height != height)
-            throw Error(cat(opt.referencePath, ": reference is ", reference->width, " x ",
+            throw Error(cat(referencePath, ": reference is ", reference->width, " x ",
                             reference->height, ", the render ", width, " x ", height));
     }
     if (!scene.sun.present && scene.sky.type == SkySpec::Type::None)
@@ -207,16 +228,16 @@ int runRender(const RenderOptions& opt)
     ocl::Context ctx(ocl::selectDevice(opt.device));
     RenderSettings settings;
     settings.emission = emission;
-    settings.paths = opt.paths;
-    settings.timeSeconds = opt.timeSeconds;
-    settings.batches = opt.batches;
-    settings.cameraSpp = opt.cameraSpp;
-    settings.seed = opt.seed;
-    settings.maxBounces = opt.maxBounces;
+    settings.paths = static_cast<std::uint64_t>(opt.paths.value_or(0));
+    settings.timeSeconds = opt.timeSeconds.value_or(0.0);
+    settings.batches = opt.batchesValue();
+    settings.cameraSpp = opt.cameraSpp.value_or(settings.cameraSpp);
+    settings.seed = opt.seedValue();
+    settings.maxBounces = opt.maxBouncesValue();
     settings.bvhWidth = opt.bvhWidth;
-    settings.poolSize = opt.poolSize;
-    if (!opt.kernels.empty())
-        settings.kernels = parseKernelMode(opt.kernels);
+    settings.poolSize = static_cast<std::uint32_t>(opt.poolSize.value_or(0));
+    if (opt.kernels)
+        settings.kernels = parseKernelMode(*opt.kernels);
     settings.rouletteDepth = opt.rouletteDepth;  // not given: the renderer takes the method's
     settings.splitMax = opt.split.value_or(settings.splitMax);
     settings.splitWeight = opt.splitWeight.value_or(settings.splitWeight);
@@ -224,8 +245,8 @@ int runRender(const RenderOptions& opt)
     settings.rois = {roi};
     for (const auto& reg : regions)
         settings.rois.push_back(reg.second);
-    settings.checkpointPath = opt.checkpointPath;
-    settings.resumePath = opt.resumePath;
+    settings.checkpointPath = checkpointPath;
+    settings.resumePath = resumePath;
     parseCheckpointEvery(opt.checkpointEvery, &settings);
     // Error against time, batch by batch (what `scripts/compare.py` charts): the ROI's mean, the
     // noise estimate, and with a reference the RMSE and the mean's bias.
@@ -268,7 +289,7 @@ int runRender(const RenderOptions& opt)
     Image noise(width, height);
     for (std::size_t p = 0; p < noise.pixels(); ++p)
         noise.rgb[3 * p] = noise.rgb[3 * p + 1] = noise.rgb[3 * p + 2] = static_cast<float>(r.stdErrLuminance[p]);
-    const Preview preview = pngPreview(r.image, st.meanLuminance_cd_m2, opt.exposure);
+    const Preview preview = pngPreview(r.image, st.meanLuminance_cd_m2, opt.exposure.value_or(0.0));
     const double exposure = preview.exposure;
     OutputFiles outputs;
     outputs.add(opt.outPath, encodeExr(r.image));
@@ -288,8 +309,8 @@ int runRender(const RenderOptions& opt)
     j["method"] = methodName(r.method);
     j["width"] = width;
     j["height"] = height;
-    j["seed"] = opt.seed;
-    j["max_bounces"] = opt.maxBounces;
+    j["seed"] = opt.seedValue();
+    j["max_bounces"] = opt.maxBouncesValue();
     j["roulette_depth"] = r.rouletteDepth;
     j["split_max"] = settings.splitMax;
     j["split_weight"] = settings.splitWeight;
@@ -298,12 +319,12 @@ int runRender(const RenderOptions& opt)
     j["paths"] = r.paths;
     j["interrupted"] = r.interrupted;
     j["checkpoint"] = {{"written", r.checkpoints},
-                       {"path", opt.checkpointPath.empty() ? nlohmann::json(nullptr) : nlohmann::json(opt.checkpointPath)},
-                       {"resumed_from", opt.resumePath.empty() ? nlohmann::json(nullptr) : nlohmann::json(opt.resumePath)},
+                       {"path", checkpointPath.empty() ? nlohmann::json(nullptr) : nlohmann::json(checkpointPath)},
+                       {"resumed_from", resumePath.empty() ? nlohmann::json(nullptr) : nlohmann::json(resumePath)},
                        {"resumed_batches", r.resumedBatches}};
     j["batches"] = r.batches;
     j["paths_per_batch"] = r.pathsPerBatch;
-    j["camera_samples_per_pixel"] = static_cast<std::uint64_t>(r.batches) * opt.cameraSpp;
+    j["camera_samples_per_pixel"] = static_cast<std::uint64_t>(r.batches) * static_cast<std::uint64_t>(settings.cameraSpp);
     const BatchCounts& n = r.counts;
     const std::uint64_t lightRays = n.extensionRays + n.shadowRays;
     j["rays"] = {{"extension", n.extensionRays},
@@ -327,7 +348,7 @@ int runRender(const RenderOptions& opt)
     // means measures it directly (pixels within a batch are correlated through shared paths).
     j["mean_std_err_cd_m2"] = r.roiMeanStdErr(0);
     if (st.rmse_cd_m2) {
-        j["reference"] = opt.referencePath;
+        j["reference"] = referencePath;
         j["rmse_cd_m2"] = *st.rmse_cd_m2;
         j["rel_mse"] = *st.relMse;
         j["bias_cd_m2"] = st.meanLuminance_cd_m2 - referenceMean;
@@ -367,7 +388,8 @@ int runRender(const RenderOptions& opt)
     j["outputs"] = {{"exr", opt.outPath}, {"png", pngPath}, {"json", jsonPath}, {"noise_exr", noisePath}};
     if (reference)
         j["outputs"]["error_png"] = errorPath;
-    outputs.add(jsonPath, j.dump(2) + "\n");  // last: it names the others
+    // Names are bytes: what is not UTF-8 is written as \xNN (util/utf8.h), so this cannot fail now.
+    outputs.add(jsonPath, dumpUtf8(std::move(j), 2) + "\n");  // last: it names the others
     outputs.commit();
 
     std::printf("%s: %d x %d, %llu paths in %d batches, %.1f s (%.2f Mrays/s)\n", opt.outPath.c_str(),

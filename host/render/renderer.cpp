@@ -1,6 +1,8 @@
 // renderer.cpp — the batch loop, calibration and progress (renderer.h).
 #include "render/renderer.h"
 
+#include "io/json_text.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -247,7 +249,7 @@ struct Renderer::Impl {
         w.f64("loop.cut_flux", n.cutFlux);
         stats.save(w);
         strategy->saveState(w);
-        w.str("carry", settings.carry ? settings.carry->dump() : std::string("null"));
+        w.str("carry", settings.carry ? dumpUtf8(*settings.carry) : std::string("null"));
         writeCheckpoint(settings.checkpointPath, fingerprint(), w.bytes());
     }
 
