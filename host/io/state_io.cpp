@@ -1,6 +1,8 @@
 // state_io.cpp — tagged binary fields (state_io.h).
 #include "io/state_io.h"
 
+#include <cmath>
+
 #include <cstring>
 
 #include "util/error.h"
@@ -124,10 +126,19 @@ std::uint64_t StateReader::u64(const char* k, std::uint64_t max)
     return v;
 }
 
+// Every number a render keeps is finite: a NaN or infinity in a checkpoint is damage (or an edit
+// whose checksum was recomputed), refused here rather than rendered.
+double StateReader::finite(const char* k, double v) const
+{
+    if (!std::isfinite(v))
+        fail(k, "a value that is not a finite number");
+    return v;
+}
+
 double StateReader::f64(const char* k)
 {
     key(k);
-    return doubleOf(raw(k));
+    return finite(k, doubleOf(raw(k)));
 }
 
 std::string StateReader::str(const char* k, std::size_t maxBytes)
@@ -155,7 +166,7 @@ std::vector<double> StateReader::f64s(const char* k, std::size_t maxCount)
     key(k);
     std::vector<double> v(count(k, maxCount));
     for (auto& x : v)
-        x = doubleOf(raw(k));
+        x = finite(k, doubleOf(raw(k)));
     return v;
 }
 

@@ -22,6 +22,8 @@ public:
     void str(const char* key, const std::string& v);
     void u64s(const char* key, const std::vector<std::uint64_t>& v);
     void f64s(const char* key, const std::vector<double>& v);
+    // The fields another writer wrote, as if written here (a snapshot taken earlier).
+    void append(const std::string& fields) { bytes_ += fields; }
     const std::string& bytes() const { return bytes_; }
 
 private:
@@ -47,6 +49,8 @@ public:
     void end();
     // An error about `key` in this source.
     [[noreturn]] void fail(const char* key, const std::string& why) const;
+    // `v`, or fail() when it is NaN or infinite.
+    double finite(const char* key, double v) const;
 
 private:
     void key(const char* k);

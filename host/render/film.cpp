@@ -117,6 +117,22 @@ void BatchStatistics::load(StateReader& r)
     for (auto& m : roiMeans_)
         m = r.f64s("film.roi_means", batches, true);
     batches_ = static_cast<int>(batches);
+    // Light is never negative, and batches weigh something (a checksum recomputed after an edit
+    // must not make a render of negative light).
+    const auto nonNegative = [&](const std::vector<double>& v, const char* key) {
+        for (const double x : v)
+            if (x < 0.0)
+                r.fail(key, "a negative value: light is never negative");
+    };
+    nonNegative(sum_, "film.sum");
+    nonNegative(sumY2_, "film.sum_y2");
+    for (const auto& m : roiMeans_)
+        nonNegative(m, "film.roi_means");
+    if (!(weight_ > 0.0) && batches > 0)
+        r.fail("film.weight", "not positive");
+    for (const double w : weights_)
+        if (!(w > 0.0))
+            r.fail("film.weights", "a batch of no weight");
 }
 
 }  // namespace fen

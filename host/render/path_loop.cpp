@@ -130,15 +130,14 @@ void PathLoop::beginBatch()
     ctx_.queue().enqueueFillBuffer(paths_, cl_uchar(0), 0, std::size_t{pool_} * sizeof(dev::PathState));
 }
 
-void PathLoop::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
-                    const std::function<void(std::uint64_t, std::uint64_t)>& progress)
+std::uint64_t PathLoop::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+                             const std::function<void(std::uint64_t, std::uint64_t)>& progress,
+                             const std::function<bool()>& abort)
 {
-    if (mode_ == KernelMode::Fused) {
-        runFused(base, count, counts, progress);
-        return;
-    }
+    if (mode_ == KernelMode::Fused)
+        return runFused(base, count, counts, progress, abort);
     auto& q = ctx_.queue();
-    const std::uint64_t end = base + count;
+    std::uint64_t end = base + count;
     params_.path_end = end;
     params_.pool_size = pool_;
     q.enqueueWriteBuffer(paramsBuf_, CL_FALSE, 0, sizeof params_, &params_);
@@ -167,35 +166,57 @@ void PathLoop::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
             progress(paths, alive + started);
         if (alive == 0 && next >= end)
             break;
+        // Stopping: no path starts any more; the paths in the pool run to their end (every index
+        // below `next` was emitted or rejected, so [base, next) is a complete set).
+        if (next < end && abort && abort()) {
+            end = next;
+            params_.path_end = end;
+            q.enqueueWriteBuffer(paramsBuf_, CL_FALSE, 0, sizeof params_, &params_);
+            if (alive == 0)
+                break;
+        }
     }
+    return std::min(next, end) - base;
 }
 
-// In launches of at most 2^20 paths (about a second on two cores): progress stays live and an
-// interrupt waits for little.
-void PathLoop::runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
-                         const std::function<void(std::uint64_t, std::uint64_t)>& progress)
+// In launches of a quarter of a second or so (the size doubles while a launch takes less than a
+// tenth, halves while it takes more than half a second): progress stays live, and a stop waits
+// for one launch. Paths are numbered, so where the launches split them changes no result.
+std::uint64_t PathLoop::runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+                                 const std::function<void(std::uint64_t, std::uint64_t)>& progress,
+                                 const std::function<bool()>& abort)
 {
     auto& q = ctx_.queue();
-    constexpr std::uint64_t kLaunch = std::uint64_t{1} << 20;
+    constexpr std::uint64_t kMinLaunch = std::uint64_t{1} << 12, kMaxLaunch = std::uint64_t{1} << 22;
     std::uint64_t ctr[FEN_CTR_COUNT] = {};
     q.enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof ctr, ctr);
     std::uint64_t extensionBefore = ctr[FEN_CTR_EXTENSION_RAYS];
-    for (std::uint64_t done = 0; done < count;) {
-        const std::uint64_t n = std::min(kLaunch, count - done);
+    std::uint64_t done = 0;
+    while (done < count) {
+        const std::uint64_t n = std::min(fusedLaunch_, count - done);
         params_.path_end = base + done + n;
         params_.pool_size = pool_;
         q.enqueueWriteBuffer(paramsBuf_, CL_FALSE, 0, sizeof params_, &params_);
         const std::uint64_t first = base + done;
         q.enqueueWriteBuffer(counters_, CL_FALSE, FEN_CTR_NEXT_PATH * 8, 8, &first);
+        const auto t0 = std::chrono::steady_clock::now();
         ocl::launch(ctx_, fused_, "trace_fused", fusedItems_, 1);
         q.enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof ctr, ctr);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (n == fusedLaunch_ && seconds < 0.1)
+            fusedLaunch_ = std::min(kMaxLaunch, fusedLaunch_ * 2);
+        else if (seconds > 0.5)
+            fusedLaunch_ = std::max(kMinLaunch, fusedLaunch_ / 2);
         const std::uint64_t rays = ctr[FEN_CTR_EXTENSION_RAYS] - extensionBefore;
         extensionBefore = ctr[FEN_CTR_EXTENSION_RAYS];
         counts.extensionRays += rays;
         done += n;
         if (progress)
             progress(n, rays);
+        if (done < count && abort && abort())
+            break;
     }
+    return done;
 }
 
 void PathLoop::endBatch(std::uint32_t batch, BatchCounts& counts)

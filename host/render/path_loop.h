@@ -68,16 +68,23 @@ public:
     // Zeroes the counters: a batch starts.
     void beginBatch();
     // Runs paths [base, base + count) to the end. `progress(pathsDone, raysDone)` is called after
-    // every iteration with the increments.
-    void run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
-             const std::function<void(std::uint64_t, std::uint64_t)>& progress);
+    // every iteration with the increments. When `abort()` turns true (checked between launches,
+    // each a fraction of a second), no path starts any more and those started are run to their
+    // end, so that paths [base, base + returned) are exactly the ones traced: a smaller, complete
+    // set. Returns the paths run (count unless aborted). The paths' results do not depend on
+    // where the launches split them.
+    std::uint64_t run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+                      const std::function<void(std::uint64_t, std::uint64_t)>& progress,
+                      const std::function<bool()>& abort = {});
     // The camera pass of batch `batch`, then the batch's counters into `counts`.
     void endBatch(std::uint32_t batch, BatchCounts& counts);
 
 private:
     void warmUp();
-    void runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
-                  const std::function<void(std::uint64_t, std::uint64_t)>& progress);
+    std::uint64_t runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
+                           const std::function<void(std::uint64_t, std::uint64_t)>& progress,
+                           const std::function<bool()>& abort);
+    std::uint64_t fusedLaunch_ = std::uint64_t{1} << 16;  // paths per fused launch, sized by its time
     ocl::Context& ctx_;
     KernelMode mode_;
     std::size_t fusedItems_ = 0;

@@ -36,8 +36,10 @@ namespace fen {
 
 namespace {
 
-// Ctrl-C or SIGTERM: the first asks the render to finish its batch in flight and write what it has;
-// a second one ends the process at once (the default action). Only async-signal-safe calls here.
+// Ctrl-C, SIGTERM or SIGHUP (a closed terminal or ssh session): the first asks the render to stop
+// within a launch -- the paths in flight finish, none start -- and write what it has; a second one
+// ends the process at once (the default action). Only async-signal-safe calls here. SIGPIPE is
+// ignored meanwhile: with the terminal gone, a progress line must not kill the render.
 std::atomic<bool> gStop{false};
 
 extern "C" void onStopSignal(int sig)
@@ -48,7 +50,7 @@ extern "C" void onStopSignal(int sig)
         return;
     }
     static const char msg[] =
-        "\nfenestra: interrupted: finishing the batch in flight and writing the image (again to quit now)\n";
+        "\nfenestra: interrupted: finishing the paths in flight and writing the image (again to quit now)\n";
     const ssize_t ignored = ::write(STDERR_FILENO, msg, sizeof msg - 1);
     (void)ignored;
 }
@@ -61,16 +63,22 @@ public:
         gStop = false;
         oldInt_ = std::signal(SIGINT, onStopSignal);
         oldTerm_ = std::signal(SIGTERM, onStopSignal);
+        oldHup_ = std::signal(SIGHUP, onStopSignal);
+        oldPipe_ = std::signal(SIGPIPE, SIG_IGN);
     }
     ~StopSignals()
     {
         std::signal(SIGINT, oldInt_);
         std::signal(SIGTERM, oldTerm_);
+        std::signal(SIGHUP, oldHup_);
+        std::signal(SIGPIPE, oldPipe_);
     }
 
 private:
     void (*oldInt_)(int);
     void (*oldTerm_)(int);
+    void (*oldHup_)(int);
+    void (*oldPipe_)(int);
 };
 
 std::string withExtension(const std::string& exrPath, const std::string& ext)
@@ -410,6 +418,9 @@ int runRender(const RenderOptions& opt)
                      "overflows were dropped\n",
                      static_cast<unsigned long long>(n.badContributions),
                      static_cast<unsigned long long>(n.overflows));
+    if (!r.checkpointError.empty())
+        throw Error(cat(r.checkpointError, " (the render stopped there; its outputs hold the ", r.batches,
+                        " batches finished)"));
     if (r.interrupted) {
         // The files are complete and valid for the paths traced; the status says they are fewer
         // than asked for (the shell's convention for a Ctrl-C).

@@ -164,10 +164,17 @@ struct Renderer::Impl {
         loop->setPickLattice(offset, static_cast<std::uint32_t>(std::clamp(std::round(step), 1.0, 4294967295.0)));
     }
 
+    struct BatchImage {
+        std::vector<double> rgb;  // per pixel
+        std::uint64_t paths = 0;  // traced: the batch's count, or fewer when a stop cut it short
+    };
+
     // Runs paths [base, base + count) as one batch, in the strategy's passes, and returns its
-    // image (rgb per pixel). `stats`: the counted batches so far (none while calibrating).
-    std::vector<double> runBatch(std::uint64_t base, std::uint64_t count, std::uint32_t batch,
-                                 BatchCounts& counts, const BatchStatistics* stats)
+    // image. `stats`: the counted batches so far (none while calibrating). A stop (settings.stop)
+    // ends the batch within a launch: the paths begun are finished and no more start, so the
+    // image is that of the fewer paths traced (BatchImage::paths).
+    BatchImage runBatch(std::uint64_t base, std::uint64_t count, std::uint32_t batch, BatchCounts& counts,
+                        const BatchStatistics* stats)
     {
         film.clear();
         loop->beginBatch();
@@ -176,13 +183,17 @@ struct Renderer::Impl {
             raysDone += rays;
             progress(false);
         };
+        const auto abort = [this] { return stopping(); };
         std::uint64_t done = 0;
         while (done < count) {
             const std::uint64_t n = std::min(count - done, std::max<std::uint64_t>(1, strategy->passLimit()));
             setPickLattice(base + done, n);
-            loop->run(base + done, n, counts, onIteration);
-            done += n;
-            strategy->afterPaths(n, done == count);
+            const std::uint64_t ran = loop->run(base + done, n, counts, onIteration, abort);
+            done += ran;
+            const bool cut = ran < n;
+            strategy->afterPaths(ran, done == count || cut);
+            if (cut)
+                break;
             // A counted batch's end is estimated from the counted batches, batch included, by
             // the render loop: not twice.
             if (done < count || !stats)
@@ -191,7 +202,15 @@ struct Renderer::Impl {
         const std::uint64_t shadowBefore = counts.shadowRays;
         loop->endBatch(batch, counts);
         raysDone += counts.shadowRays - shadowBefore;
-        return film.read(count);
+        return {film.read(done), done};
+    }
+
+    // The strategy's state, as a checkpoint holds it (between batches).
+    std::string strategyState() const
+    {
+        StateWriter w;
+        strategy->saveState(w);
+        return w.bytes();
     }
 
     // What must be equal for a checkpoint to continue this render (render/checkpoint.h).
@@ -235,7 +254,10 @@ struct Renderer::Impl {
         double renderSeconds = 0.0;  // counted batches, before this process
     };
 
-    void saveCheckpoint(const LoopState& l, double renderSeconds, const RenderResult& r, const BatchStatistics& stats)
+    // `strategyBytes`: the strategy's state as strategyState() took it at the end of the last
+    // counted batch, when it has moved on since (a batch cut short by a stop); else its state now.
+    void saveCheckpoint(const LoopState& l, double renderSeconds, const RenderResult& r, const BatchStatistics& stats,
+                        const std::string* strategyBytes = nullptr)
     {
         StateWriter w;
         w.u64("loop.base", l.base);
@@ -248,7 +270,10 @@ struct Renderer::Impl {
                                n.statsOverflows, n.maxBounceCuts, n.cameraGlassCuts});
         w.f64("loop.cut_flux", n.cutFlux);
         stats.save(w);
-        strategy->saveState(w);
+        if (strategyBytes)
+            w.append(*strategyBytes);
+        else
+            strategy->saveState(w);
         w.str("carry", settings.carry ? dumpUtf8(*settings.carry) : std::string("null"));
         writeCheckpoint(settings.checkpointPath, fingerprint(), w.bytes());
     }
@@ -281,8 +306,23 @@ struct Renderer::Impl {
             if (settings.carry->is_discarded())
                 in.fail("carry", "not JSON");
         }
+        // What the numbers must be for this render (its settings are in the fingerprint): a
+        // checkpoint edited and checksummed again must not hang it or count what was not traced.
+        const int batches = std::max(2, settings.batches);
         if (l.perBatch == 0)
             in.fail("loop.per_batch", "zero");
+        if (settings.paths > 0 && l.perBatch != std::max<std::uint64_t>(1, settings.paths / static_cast<std::uint64_t>(batches)))
+            in.fail("loop.per_batch", cat(l.perBatch, " paths, not the ", settings.paths / static_cast<std::uint64_t>(batches),
+                                          " of --paths over --batches"));
+        if (l.perBatch > static_cast<std::uint64_t>(1e15))
+            in.fail("loop.per_batch", "more paths than a render can trace");
+        if (l.done < 0 || (settings.paths > 0 && l.done > batches))
+            in.fail("loop.done", cat(l.done, " batches of ", batches));
+        if (l.base < l.perBatch * static_cast<std::uint64_t>(l.done) ||
+            (settings.paths > 0 && l.base != l.perBatch * static_cast<std::uint64_t>(l.done)))
+            in.fail("loop.base", "does not match the batches done");
+        if (l.renderSeconds < 0.0 || r.calibrationSeconds < 0.0 || r.counts.cutFlux < 0.0)
+            in.fail("loop.render_seconds", "a negative time or flux");
         r.resumedBatches = l.done;
     }
 
@@ -322,9 +362,13 @@ struct Renderer::Impl {
             double last = 0.0;
             for (;;) {
                 const auto t0 = Clock::now();
-                runBatch(l.base, cal, 0xFFFFFFFFu, scratch, nullptr);
+                const std::uint64_t ran = runBatch(l.base, cal, 0xFFFFFFFFu, scratch, nullptr).paths;
                 last = since(t0);
-                l.base += cal;
+                l.base += ran;
+                if (ran < cal) {  // stopped: the rate of what ran is as good a guess as any
+                    cal = std::max<std::uint64_t>(ran, 1);
+                    break;
+                }
                 if (last >= enough || since(c0) >= 0.1 * settings.timeSeconds || stopping())
                     break;
                 cal *= 2;
@@ -344,12 +388,22 @@ struct Renderer::Impl {
         const bool checkpointing = !settings.checkpointPath.empty();
         auto lastCheckpoint = Clock::now();
         int savedAt = l.done;
-        const auto checkpoint = [&] {
-            saveCheckpoint(l, renderSeconds(), r, stats);
+        std::string counted;  // the strategy's state after the last counted batch (checkpointing)
+        // A checkpoint that cannot be written ends the render, after the batches done are written.
+        const auto checkpoint = [&](const std::string* strategyBytes) {
+            try {
+                saveCheckpoint(l, renderSeconds(), r, stats, strategyBytes);
+            } catch (const Error& e) {
+                r.checkpointError = e.what();
+                return false;
+            }
             lastCheckpoint = Clock::now();
             savedAt = l.done;
             ++r.checkpoints;
+            return true;
         };
+        bool partial = false;  // the one batch counted was cut short by a stop
+        bool dropped = false;  // a batch cut short by a stop was dropped: the strategy moved on
         for (;;) {
             if (settings.paths > 0 && l.done >= batches)
                 break;
@@ -363,9 +417,28 @@ struct Renderer::Impl {
                 if (elapsed + perBatchSeconds > settings.timeSeconds)
                     break;
             }
-            const std::vector<double> img =
-                runBatch(l.base, l.perBatch, static_cast<std::uint32_t>(l.done), r.counts, &stats);
-            stats.add(img, strategy->batchWeight());
+            if (checkpointing)
+                counted = strategyState();
+            const BatchCounts countsBefore = r.counts;
+            const BatchImage img = runBatch(l.base, l.perBatch, static_cast<std::uint32_t>(l.done), r.counts, &stats);
+            if (img.paths < l.perBatch) {
+                // Stopped inside the batch. With batches done, the image is theirs and this one is
+                // dropped (its counts too; a checkpoint gets the strategy as they left it); with
+                // none, the paths it traced are the image: one smaller batch, and no checkpoint.
+                r.interrupted = true;
+                if (l.done >= 1) {
+                    r.counts = countsBefore;
+                    dropped = true;
+                    break;
+                }
+                stats.add(img.rgb, strategy->batchWeight());
+                l.base += img.paths;
+                l.perBatch = img.paths;
+                ++l.done;
+                partial = true;
+                break;
+            }
+            stats.add(img.rgb, strategy->batchWeight());
             estimateImage(&stats, 0);
             l.base += l.perBatch;
             ++l.done;
@@ -375,11 +448,13 @@ struct Renderer::Impl {
             const bool due = settings.checkpointBatches > 0
                                  ? (l.done - savedAt) >= settings.checkpointBatches
                                  : since(lastCheckpoint) >= settings.checkpointSeconds;
-            if (checkpointing && (due || stopping()))
-                checkpoint();
+            if (checkpointing && (due || stopping()) && !checkpoint(nullptr)) {
+                r.interrupted = true;
+                break;
+            }
         }
-        if (checkpointing && r.interrupted && savedAt != l.done)
-            checkpoint();
+        if (checkpointing && r.interrupted && !partial && savedAt != l.done && r.checkpointError.empty())
+            checkpoint(dropped ? &counted : nullptr);
         r.renderSeconds = renderSeconds();
         progress(true);
         if (settings.progress)

@@ -86,6 +86,7 @@ struct RenderResult {
     int batches = 0;
     BatchCounts counts;                  // rays and counters of the counted batches
     bool interrupted = false;         // stopped by settings.stop before its paths or time were done
+    std::string checkpointError;      // a checkpoint could not be written: the render stopped there
     int resumedBatches = 0;           // batches that came from the checkpoint resumed
     int checkpoints = 0;              // checkpoints written
     double renderSeconds = 0.0;       // the counted batches

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -889,6 +890,124 @@ TEST(CliRender, NonUtf8NamesAreWrittenNotLost)
                          "' --region 's\xFC" "d=0,0,8,8' --paths 20000 --width 16 --no-progress");
     EXPECT_EQ(q.status, 0) << q.err;
     EXPECT_EQ(slurp(dir + "/again.exr"), slurp(out));
+}
+
+
+// A stop arrives within about a second whatever the batch size (it used to wait for the batch in
+// flight: minutes at --paths 2e9): the paths in flight finish, none start, and the image is that of
+// the paths traced. SIGINT, SIGTERM and SIGHUP (a closed terminal) alike.
+TEST(CliRender, AStopEndsTheRenderWithinAboutASecond)
+{
+    const std::string dir = test::tempDir("cli-stop-fast");
+    const std::string scene = plateScene().write(dir + "/plate.gltf");
+    for (const char* sig : {"INT", "HUP", "TERM"}) {
+        const std::string out = dir + "/" + sig;
+        // Two batches of 2e9 paths each: one batch alone takes minutes on two cores.
+        const std::string cmd = std::string(FENESTRA_BIN) + " render " + scene + " --out " + out +
+                                ".exr --paths 4e9 --batches 2 --width 40 --no-progress 2>" + out +
+                                ".err & pid=$!; sleep 3; s=$(date +%s%N); kill -" + sig +
+                                " $pid; wait $pid; echo $? $(( ($(date +%s%N) - s) / 1000000 )) >" + out + ".status";
+        ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
+        std::istringstream st(slurp(out + ".status"));
+        int status = 0, ms = 0;
+        st >> status >> ms;
+        EXPECT_EQ(status, 130) << sig << ": " << slurp(out + ".err");
+        EXPECT_LT(ms, 2500) << sig << ": took " << ms << " ms to stop";
+        std::printf("[ stop ] SIG%s: exited %d, %d ms after the signal\n", sig, status, ms);
+        const auto j = nlohmann::json::parse(slurp(out + ".json"));
+        EXPECT_TRUE(j["interrupted"].get<bool>()) << sig;
+        EXPECT_EQ(j["batches"], 1) << sig;  // the batch in flight, cut short: its paths are the image
+        EXPECT_GT(j["paths"].get<std::uint64_t>(), 0u) << sig;
+        EXPECT_LT(j["paths"].get<std::uint64_t>(), 2000000000u) << sig;
+        EXPECT_GT(j["mean_luminance_cd_m2"].get<double>(), 0.0) << sig;
+        EXPECT_EQ(j["counters"]["bad_contributions"], 0) << sig;
+    }
+}
+
+// Stopped in the middle of a batch of a learning render, the checkpoint is the state after the
+// batches done (the strategy's too, although it went on learning), and resuming it gives the
+// image of the render never stopped, bit for bit.
+TEST(CliRender, AStopMidBatchStillResumesBitIdentically)
+{
+    const std::string dir = test::tempDir("cli-stop-resume");
+    const std::string scene = std::string(FEN_SCENES_DIR) + "/room.gltf";
+    const std::string args = " --paths 24000000 --batches 4 --width 32 --seed 9 --no-progress";
+    ASSERT_EQ(run("render " + scene + " --out " + dir + "/whole.exr" + args).status, 0);
+    // Stop just after the first batch's checkpoint appears: inside the second batch (a quarter of
+    // the render, over a second on two cores).
+    const std::string cmd = std::string(FENESTRA_BIN) + " render " + scene + " --out " + dir + "/r.exr" + args +
+                            " --checkpoint " + dir + "/c.ckpt --checkpoint-every 1batches 2>" + dir +
+                            "/err & pid=$!; while [ ! -e " + dir + "/c.ckpt ]; do sleep 0.02; done; kill -INT $pid; "
+                            "wait $pid; echo $? >" + dir + "/status";
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
+    const int status = std::stoi(slurp(dir + "/status"));
+    if (status == 0)
+        GTEST_SKIP() << "the render finished before the signal";
+    ASSERT_EQ(status, 130) << slurp(dir + "/err");
+    const auto j = nlohmann::json::parse(slurp(dir + "/r.json"));
+    EXPECT_LT(j["batches"].get<int>(), 4);
+    const CliRun r = run("render " + scene + " --out " + dir + "/r.exr" + args + " --resume " + dir + "/c.ckpt");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(slurp(dir + "/r.exr") == slurp(dir + "/whole.exr")) << "resumed image differs";
+}
+
+// A checkpoint that cannot be written (a full disk) ends the render after the image of the batches
+// done is written, with a one-line error; it used to end it with nothing written.
+TEST(CliRender, AFailedCheckpointStillWritesTheImage)
+{
+    const std::string dir = test::tempDir("cli-ckpt-fail");
+    const std::string scene = plateScene().write(dir + "/plate.gltf");
+    const CliRun r = run("render " + scene + " --out " + dir + "/r.exr --paths 400000 --batches 8 --width 16 "
+                         "--checkpoint " + dir + "/c.ckpt --checkpoint-every 2batches --no-progress",
+                         "FEN_FAIL_WRITE=c.ckpt");
+    expectError(r, 1, "c.ckpt: cannot write");
+    EXPECT_NE(r.err.find("outputs hold the 2 batches finished"), std::string::npos) << r.err;
+    const auto j = nlohmann::json::parse(slurp(dir + "/r.json"));
+    EXPECT_EQ(j["batches"], 2);
+    EXPECT_GT(j["mean_luminance_cd_m2"].get<double>(), 0.0);
+}
+
+
+// A checkpoint whose checksum was recomputed after an edit passes the checksum, not the meaning:
+// a per-batch count that would hang the render, a NaN or negative film sum are refused in one line.
+TEST(CliRender, AnEditedCheckpointIsRefusedByWhatItSays)
+{
+    const std::string dir = test::tempDir("cli-ckpt-edit");
+    const std::string scene = plateScene().write(dir + "/plate.gltf");
+    const std::string args = " --paths 80000 --batches 8 --width 16 --no-progress";
+    ASSERT_EQ(run("render " + scene + " --out " + dir + "/r.exr" + args + " --checkpoint " + dir +
+                  "/c.ckpt --checkpoint-every 2batches").status, 0);
+    const std::string good = slurp(dir + "/c.ckpt");
+    // The value after `key` (its length, its bytes, then for an array its count) becomes `bits`,
+    // and the checksum (FNV-1a 64 over everything before it) is made right again.
+    const auto edited = [&](const std::string& key, bool array, std::uint64_t bits, const std::string& name) {
+        std::string b = good;
+        std::string tag(8, '\0');
+        for (int i = 0; i < 8; ++i)
+            tag[i] = static_cast<char>((key.size() >> (8 * i)) & 0xff);
+        const std::size_t at = b.find(tag + key);
+        EXPECT_NE(at, std::string::npos) << key;
+        const std::size_t value = at + 8 + key.size() + (array ? 8 : 0);
+        for (int i = 0; i < 8; ++i)
+            b[value + i] = static_cast<char>((bits >> (8 * i)) & 0xff);
+        std::uint64_t h = 1469598103934665603ull;
+        for (std::size_t i = 0; i + 8 < b.size(); ++i)
+            h = (h ^ static_cast<unsigned char>(b[i])) * 1099511628211ull;
+        for (int i = 0; i < 8; ++i)
+            b[b.size() - 8 + i] = static_cast<char>((h >> (8 * i)) & 0xff);
+        std::ofstream(dir + "/" + name, std::ios::binary) << b;
+        return dir + "/" + name;
+    };
+    const auto bitsOf = [](double d) {
+        std::uint64_t u;
+        std::memcpy(&u, &d, 8);
+        return u;
+    };
+    const std::string resume = "render " + scene + " --out " + dir + "/x.exr" + args + " --resume ";
+    expectError(run(resume + edited("loop.per_batch", false, std::uint64_t{1} << 60, "huge.ckpt")), 1, "loop.per_batch");
+    expectError(run(resume + edited("film.sum", true, bitsOf(std::nan("")), "nan.ckpt")), 1, "film.sum");
+    expectError(run(resume + edited("film.sum", true, bitsOf(-5.0), "negative.ckpt")), 1, "light is never negative");
+    EXPECT_EQ(run(resume + edited("loop.per_batch", false, 10000, "same.ckpt")).status, 0);  // the edit machinery works
 }
 
 }  // namespace
