@@ -100,6 +100,19 @@ public:
                 flux[d].push_back(boxFlux(c, 64));
                 regionTotal[r == 0 ? 0 : 1] += flux[d].back();
             }
+        // The grid's first cells, counted before any is made: a combination of depths (and many
+        // portal planes) can ask for more than any machine holds; that is the cell limit's error.
+        std::uint64_t lit = 0;
+        for (std::size_t d = 0; d < dirBoxes.size(); ++d)
+            for (std::uint32_t r = 0; r < regionTotal.size(); ++r)
+                lit += flux[d][r] > 0.0 && regionTotal[r == 0 ? 0 : 1] > 0.0;
+        const std::uint64_t initialCells = lit * std::uint64_t{side} * side;
+        if (initialCells > opt_.maxCells)
+            throw Error(cat("--adaptive-max-cells ", opt_.maxCells, " is below the ", initialCells,
+                            " cells the grid starts with (", lit, " lit direction boxes and regions x 4^",
+                            opt_.initialDepth, " origin boxes): lower --adaptive-initial-depth or "
+                            "--adaptive-initial-sky-depth, or raise --adaptive-max-cells"));
+        cells.reserve(static_cast<std::size_t>(initialCells));
         for (std::size_t d = 0; d < dirBoxes.size(); ++d)
             for (std::uint32_t r = 0; r < regionTotal.size(); ++r) {
                 const double share = r == 0 ? diskShare : 1.0 - diskShare;

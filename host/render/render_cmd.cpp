@@ -27,6 +27,8 @@
 #include "io/png_preview.h"
 #include "render/camera_setup.h"
 #include "render/image_stats.h"
+#include "render/memory_check.h"
+#include "render/path_loop.h"
 #include "render/renderer.h"
 #include "scene/gltf_load.h"
 #include "sky/sky_spec.h"
@@ -234,6 +236,11 @@ int runRender(const RenderOptions& opt)
                      scene.source.c_str());
 
     ocl::Context ctx(ocl::selectDevice(opt.device));
+    // What the film and the path pool will take, against what the device and the host have.
+    checkMemoryNeeds(renderMemoryNeeds(width, height,
+                                       opt.poolSize ? static_cast<std::uint64_t>(*opt.poolSize)
+                                                    : defaultPoolSlots(ctx.info())),
+                     ctx.info());
     RenderSettings settings;
     settings.emission = emission;
     settings.paths = static_cast<std::uint64_t>(opt.paths.value_or(0));
