@@ -22,7 +22,8 @@ namespace {
 
 int fail(const std::string& message, int code)
 {
-    std::fprintf(stderr, "fenestra: error: %s\n", message.c_str());
+    // One line, whatever a message quotes: control characters are escaped here, at the boundary.
+    std::fprintf(stderr, "fenestra: error: %s\n", fen::printable(message, 4000).c_str());
     return code;
 }
 
@@ -111,7 +112,8 @@ int main(int argc, char** argv)
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        return fail(std::string(e.what()) + " (see fenestra --help)", 2);
+        // CLI11 quotes what was typed, bytes and all: one line, control characters escaped.
+        return fail(fen::printable(e.what(), 400) + " (see fenestra --help)", 2);
     }
 
     try {

@@ -21,7 +21,7 @@ PortalOverlap parsePortalOverlap(const std::string& s)
         return PortalOverlap::Weight;
     if (s == "none")
         return PortalOverlap::None;
-    throw Error(cat("--portal-overlap '", s, "': expected reject, weight or none"));
+    throw Error(cat("--portal-overlap '", printable(s, 40), "': expected reject, weight or none"));
 }
 
 namespace {

@@ -227,7 +227,7 @@ PortalSet collectPortals(const Scene& scene, const std::string& override)
                 else if (k == "panes")
                     forced = PortalMark::Panes;
                 else
-                    throw Error(cat("--portals: '", name, "': the kind after ':' must be panes or hull"));
+                    throw Error(cat("--portals: '", printable(name, 60), "': the kind after ':' must be panes or hull"));
                 name = trim(name.substr(0, colon));
             }
             bool found = false;
@@ -245,7 +245,7 @@ PortalSet collectPortals(const Scene& scene, const std::string& override)
                 std::string names;
                 for (const auto& s : withGeometry)
                     names += (names.empty() ? "'" : ", '") + s + "'";
-                throw Error(cat("--portals: no node named '", name, "' in ", scene.source,
+                throw Error(cat("--portals: no node named '", printable(name, 60), "' in ", printable(scene.source),
                                 " (nodes with geometry: ", names, ")"));
             }
         }

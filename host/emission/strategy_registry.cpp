@@ -36,7 +36,7 @@ EmissionMethod parseEmissionMethod(const std::string& s)
             return all[i]->method;
         names += cat(i == 0 ? "" : i + 1 == all.size() ? " or " : ", ", all[i]->name);
     }
-    throw Error(cat("--method '", s, "': expected ", names));
+    throw Error(cat("--method '", printable(s, 40), "': expected ", names));
 }
 
 std::string methodName(EmissionMethod m) { return strategyDescriptor(m).name; }

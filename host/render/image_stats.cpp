@@ -25,14 +25,14 @@ Roi parseRoi(const std::string& spec, int width, int height, const std::string& 
             if (used != item.size())
                 throw std::invalid_argument(item);
         } catch (const std::exception&) {
-            throw Error(cat(option, " '", spec, "': '", item, "' is not an integer"));
+            throw Error(cat(option, " '", printable(spec, 80), "': '", printable(item, 40), "' is not an integer"));
         }
     }
     if (v.size() != 4)
-        throw Error(cat(option, " '", spec, "': expected x0,y0,x1,y1"));
+        throw Error(cat(option, " '", printable(spec, 80), "': expected x0,y0,x1,y1"));
     r = Roi{v[0], v[1], v[2], v[3]};
     if (r.x0 < 0 || r.y0 < 0 || r.x1 > width || r.y1 > height || r.x0 >= r.x1 || r.y0 >= r.y1)
-        throw Error(cat(option, " '", spec, "': must satisfy 0 <= x0 < x1 <= ", width,
+        throw Error(cat(option, " '", printable(spec, 80), "': must satisfy 0 <= x0 < x1 <= ", width,
                         " and 0 <= y0 < y1 <= ", height));
     return r;
 }

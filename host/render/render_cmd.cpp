@@ -90,31 +90,6 @@ std::string withExtension(const std::string& exrPath, const std::string& ext)
 
 }  // namespace
 
-// --checkpoint-every: "10min", "30 s", "4 batches" (units: min, m, s, batches, b).
-void parseCheckpointEvery(const std::string& text, RenderSettings* s)
-{
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-        v = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    std::string unit = text.substr(used);
-    unit.erase(0, unit.find_first_not_of(' '));
-    const bool ok = used > 0 && std::isfinite(v) && v > 0.0;
-    if (ok && (unit == "min" || unit == "m")) {
-        s->checkpointSeconds = 60.0 * v;
-    } else if (ok && unit == "s") {
-        s->checkpointSeconds = v;
-    } else if (ok && (unit == "batches" || unit == "b" || unit == "batch") && v == std::floor(v) && v <= 1024.0) {
-        s->checkpointBatches = static_cast<int>(v);
-    } else {
-        throw Error(cat("--checkpoint-every '", printable(text, 40),
-                        "': give a positive number and a unit: 10min, 30s or 4batches"));
-    }
-}
-
 // The sun and the sky rendered (after the command line's changes), for the JSON.
 nlohmann::json sunJson(const Sun& sun)
 {
@@ -157,7 +132,7 @@ int runRender(const RenderOptions& opt)
 {
     const auto t0 = std::chrono::steady_clock::now();
     if (opt.outPath.size() < 5 || opt.outPath.substr(opt.outPath.size() - 4) != ".exr")
-        throw Error(cat("--out '", opt.outPath, "' must name an .exr file"));
+        throw Error(cat("--out '", printable(opt.outPath), "' must name an .exr file"));
     const EmissionSettings emission = opt.emission.settings();
     const std::string checkpointPath = opt.checkpointPath.value_or(""), resumePath = opt.resumePath.value_or("");
     const std::string referencePath = opt.referencePath.value_or("");
@@ -262,7 +237,8 @@ int runRender(const RenderOptions& opt)
         settings.rois.push_back(reg.second);
     settings.checkpointPath = checkpointPath;
     settings.resumePath = resumePath;
-    parseCheckpointEvery(opt.checkpointEvery, &settings);
+    settings.checkpointSeconds = opt.checkpointSeconds;
+    settings.checkpointBatches = opt.checkpointBatches;
     // Error against time, batch by batch (what `scripts/compare.py` charts): the ROI's mean, the
     // noise estimate, and with a reference the RMSE and the mean's bias.
     nlohmann::json progress = nlohmann::json::array();

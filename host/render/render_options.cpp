@@ -80,6 +80,33 @@ void addRenderOptions(CLI::App& r, RenderOptions& o)
     r.add_flag("--no-progress", o.progressOff, "Never show progress");
 }
 
+namespace {
+
+// --checkpoint-every: "10min", "30 s", "4 batches" (units: min, m, s, batches, b).
+void parseCheckpointEvery(const std::string& text, RenderOptions* s)
+{
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+        v = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    std::string unit = text.substr(used);
+    unit.erase(0, unit.find_first_not_of(' '));
+    const bool ok = used > 0 && std::isfinite(v) && v > 0.0;
+    if (ok && (unit == "min" || unit == "m")) {
+        s->checkpointSeconds = 60.0 * v;
+    } else if (ok && unit == "s") {
+        s->checkpointSeconds = v;
+    } else if (ok && (unit == "batches" || unit == "b" || unit == "batch") && v == std::floor(v) && v <= 1024.0) {
+        s->checkpointBatches = static_cast<int>(v);
+    } else {
+        throw Error(cat("--checkpoint-every '", printable(text, 40),
+                        "': give a positive number and a unit: 10min, 30s or 4batches"));
+    }
+}
+
 // A count as a user types it: digits, or a number in decimal or scientific notation that is a
 // whole number (2e9). Anything else, and anything beyond `max`, is an error quoting the text.
 std::int64_t parseCount(const std::string& text, const char* option, std::int64_t max, const char* range)
@@ -99,8 +126,11 @@ std::int64_t parseCount(const std::string& text, const char* option, std::int64_
     return static_cast<std::int64_t>(v);
 }
 
+}  // namespace
+
 void validateRenderOptions(RenderOptions& o)
 {
+    parseCheckpointEvery(o.checkpointEvery, &o);
     if (o.pathsText)
         o.paths = parseCount(*o.pathsText, "--paths", kMaxRenderPaths, "2^56 (72057594037927936, the most a render can number)");
     if (o.paths && o.timeSeconds)

@@ -55,6 +55,8 @@ struct RenderOptions {
     bool progressOn = false, progressOff = false;  // the flags behind `progress`
     std::optional<std::string> checkpointPath;     // --checkpoint
     std::string checkpointEvery = "10min";         // --checkpoint-every: N min | N s | N batches
+    double checkpointSeconds = 600.0;              // ... as validateRenderOptions reads it
+    int checkpointBatches = 0;                     //     (batches: 0 when given in time)
     std::optional<std::string> resumePath;         // --resume
     SkySunOptions skySun;                  // --sky, --sun, ... (sky/sky_sun_options.h)
 
