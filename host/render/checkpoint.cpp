@@ -181,6 +181,11 @@ std::string readCheckpoint(const std::string& path, const nlohmann::json& finger
     std::string bytes(static_cast<std::size_t>(size), '\0');
     if (!in.read(bytes.data(), size))
         throw Error(cat(path, ": cannot read the checkpoint"));
+    return checkpointPayload(bytes, path, fingerprint);
+}
+
+std::string checkpointPayload(const std::string& bytes, const std::string& path, const nlohmann::json& fingerprint)
+{
     const std::size_t magic = std::strlen(kMagic);
     if (bytes.compare(0, magic, kMagic) != 0)
         throw Error(cat(path, ": not a fenestra checkpoint"));
@@ -230,6 +235,53 @@ void requireCheckpointTarget(const std::string& path, const std::string& option)
     if (!in.read(head.data(), static_cast<std::streamsize>(magic)) || head != kMagic)
         throw Error(cat(option, " ", printable(path), ": exists and is not a fenestra checkpoint; a checkpoint is "
                                                        "written only over a checkpoint or to a new file"));
+}
+
+void writeLoopState(StateWriter& w, const LoopState& l)
+{
+    w.u64("loop.base", l.base);
+    w.u64("loop.per_batch", l.perBatch);
+    w.u64("loop.done", static_cast<std::uint64_t>(l.done));
+    w.f64("loop.render_seconds", l.renderSeconds);
+    w.f64("loop.calibration_seconds", l.calibrationSeconds);
+    const BatchCounts& n = l.counts;
+    w.u64s("loop.counts", {n.extensionRays, n.shadowRays, n.cameraRays, n.badContributions, n.overflows,
+                           n.statsOverflows, n.maxBounceCuts, n.cameraGlassCuts});
+    w.f64("loop.cut_flux", n.cutFlux);
+}
+
+void readLoopState(StateReader& in, const LoopRules& rules, LoopState* out)
+{
+    LoopState l;
+    l.base = in.u64("loop.base");
+    l.perBatch = in.u64("loop.per_batch");
+    l.done = static_cast<int>(in.u64("loop.done", static_cast<std::uint64_t>(rules.batches)));
+    l.renderSeconds = in.f64("loop.render_seconds");
+    l.calibrationSeconds = in.f64("loop.calibration_seconds");
+    const std::vector<std::uint64_t> c = in.u64s("loop.counts", 8);
+    if (c.size() != 8)
+        in.fail("loop.counts", "not 8 counters");
+    BatchCounts& n = l.counts;
+    n.extensionRays = c[0], n.shadowRays = c[1], n.cameraRays = c[2], n.badContributions = c[3];
+    n.overflows = c[4], n.statsOverflows = c[5], n.maxBounceCuts = c[6], n.cameraGlassCuts = c[7];
+    n.cutFlux = in.f64("loop.cut_flux");
+    const std::uint64_t batches = static_cast<std::uint64_t>(rules.batches);
+    if (l.perBatch == 0)
+        in.fail("loop.per_batch", "zero");
+    if (rules.paths > 0 && l.perBatch != std::max<std::uint64_t>(1, rules.paths / batches))
+        in.fail("loop.per_batch", cat(l.perBatch, " paths, not the ", rules.paths / batches,
+                                      " of --paths over --batches"));
+    if (l.perBatch > static_cast<std::uint64_t>(1e15))
+        in.fail("loop.per_batch", "more paths than a render can trace");
+    if (l.done < 0 || (rules.paths > 0 && l.done > rules.batches))
+        in.fail("loop.done", cat(l.done, " batches of ", rules.batches));
+    std::uint64_t counted = 0;
+    if (__builtin_mul_overflow(l.perBatch, static_cast<std::uint64_t>(l.done), &counted) || l.base < counted ||
+        (rules.paths > 0 && l.base != counted))
+        in.fail("loop.base", "does not match the batches done");
+    if (l.renderSeconds < 0.0 || l.calibrationSeconds < 0.0 || n.cutFlux < 0.0)
+        in.fail("loop.render_seconds", "a negative time or flux");
+    *out = l;
 }
 
 }  // namespace fen

@@ -16,6 +16,9 @@
 // Written like every output (io/output_files.h): temporary file, fsync, rename.
 #pragma once
 
+#include "io/state_io.h"
+#include "render/path_loop.h"
+
 #include <cstdint>
 #include <string>
 
@@ -37,10 +40,33 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& fingerprint,
 // The payload of the checkpoint at `path`, after checking its integrity, its build and that its
 // fingerprint equals `fingerprint` (fen::Error naming the file and the first key that differs).
 std::string readCheckpoint(const std::string& path, const nlohmann::json& fingerprint);
+// The same from a checkpoint's bytes (also the checkpoint fuzz target's entry); `path` names it.
+std::string checkpointPayload(const std::string& bytes, const std::string& path, const nlohmann::json& fingerprint);
 
 // Whether `path` may receive a checkpoint: it does not exist, or it is a regular file that starts
 // as a checkpoint does (never a scene, an image or anything else a typo names). Throws fen::Error
 // naming `option` otherwise.
 void requireCheckpointTarget(const std::string& path, const std::string& option);
+
+// Where a render's batch loop stands: with the film's and the strategy's state, a checkpoint's
+// payload (in this order: loop, film, strategy, carry).
+struct LoopState {
+    std::uint64_t base = 0, perBatch = 0;  // next path index; paths per batch
+    int done = 0;                          // batches counted
+    double renderSeconds = 0.0;            // counted batches, before this process
+    double calibrationSeconds = 0.0;
+    BatchCounts counts;
+};
+
+// What a render's settings require of a loop state: --paths (0 with --time) and the batches.
+struct LoopRules {
+    std::uint64_t paths = 0;
+    int batches = 16;
+};
+
+void writeLoopState(StateWriter& w, const LoopState& l);
+// Reads the loop state and checks it means something for this render (a checkpoint edited and
+// checksummed again must not hang it or count what was not traced); fails through `in`.
+void readLoopState(StateReader& in, const LoopRules& rules, LoopState* l);
 
 }  // namespace fen

@@ -247,28 +247,17 @@ struct Renderer::Impl {
                 {"method_options", {{methodName(e.method), strategyDescriptor(e.method).fingerprint(e)}}}};
     }
 
-    // Where the batch loop stands; with the strategy's and the statistics' state, a checkpoint.
-    struct LoopState {
-        std::uint64_t base = 0, perBatch = 0;
-        int done = 0;
-        double renderSeconds = 0.0;  // counted batches, before this process
-    };
-
     // `strategyBytes`: the strategy's state as strategyState() took it at the end of the last
     // counted batch, when it has moved on since (a batch cut short by a stop); else its state now.
     void saveCheckpoint(const LoopState& l, double renderSeconds, const RenderResult& r, const BatchStatistics& stats,
                         const std::string* strategyBytes = nullptr)
     {
         StateWriter w;
-        w.u64("loop.base", l.base);
-        w.u64("loop.per_batch", l.perBatch);
-        w.u64("loop.done", static_cast<std::uint64_t>(l.done));
-        w.f64("loop.render_seconds", renderSeconds);
-        w.f64("loop.calibration_seconds", r.calibrationSeconds);
-        const BatchCounts& n = r.counts;
-        w.u64s("loop.counts", {n.extensionRays, n.shadowRays, n.cameraRays, n.badContributions, n.overflows,
-                               n.statsOverflows, n.maxBounceCuts, n.cameraGlassCuts});
-        w.f64("loop.cut_flux", n.cutFlux);
+        LoopState saved = l;
+        saved.renderSeconds = renderSeconds;
+        saved.calibrationSeconds = r.calibrationSeconds;
+        saved.counts = r.counts;
+        writeLoopState(w, saved);
         stats.save(w);
         if (strategyBytes)
             w.append(*strategyBytes);
@@ -282,18 +271,9 @@ struct Renderer::Impl {
     {
         const std::string bytes = readCheckpoint(settings.resumePath, fingerprint());
         StateReader in(bytes, settings.resumePath);
-        l.base = in.u64("loop.base");
-        l.perBatch = in.u64("loop.per_batch");
-        l.done = static_cast<int>(in.u64("loop.done", static_cast<std::uint64_t>(std::max(2, settings.batches))));
-        l.renderSeconds = in.f64("loop.render_seconds");
-        r.calibrationSeconds = in.f64("loop.calibration_seconds");
-        const std::vector<std::uint64_t> c = in.u64s("loop.counts", 8);
-        if (c.size() != 8)
-            in.fail("loop.counts", "not 8 counters");
-        BatchCounts& n = r.counts;
-        n.extensionRays = c[0], n.shadowRays = c[1], n.cameraRays = c[2], n.badContributions = c[3];
-        n.overflows = c[4], n.statsOverflows = c[5], n.maxBounceCuts = c[6], n.cameraGlassCuts = c[7];
-        n.cutFlux = in.f64("loop.cut_flux");
+        readLoopState(in, {settings.paths, std::max(2, settings.batches)}, &l);
+        r.calibrationSeconds = l.calibrationSeconds;
+        r.counts = l.counts;
         stats.load(in);
         if (stats.batches() != l.done)
             in.fail("film.batches", "does not match loop.done");
@@ -306,23 +286,6 @@ struct Renderer::Impl {
             if (settings.carry->is_discarded())
                 in.fail("carry", "not JSON");
         }
-        // What the numbers must be for this render (its settings are in the fingerprint): a
-        // checkpoint edited and checksummed again must not hang it or count what was not traced.
-        const int batches = std::max(2, settings.batches);
-        if (l.perBatch == 0)
-            in.fail("loop.per_batch", "zero");
-        if (settings.paths > 0 && l.perBatch != std::max<std::uint64_t>(1, settings.paths / static_cast<std::uint64_t>(batches)))
-            in.fail("loop.per_batch", cat(l.perBatch, " paths, not the ", settings.paths / static_cast<std::uint64_t>(batches),
-                                          " of --paths over --batches"));
-        if (l.perBatch > static_cast<std::uint64_t>(1e15))
-            in.fail("loop.per_batch", "more paths than a render can trace");
-        if (l.done < 0 || (settings.paths > 0 && l.done > batches))
-            in.fail("loop.done", cat(l.done, " batches of ", batches));
-        if (l.base < l.perBatch * static_cast<std::uint64_t>(l.done) ||
-            (settings.paths > 0 && l.base != l.perBatch * static_cast<std::uint64_t>(l.done)))
-            in.fail("loop.base", "does not match the batches done");
-        if (l.renderSeconds < 0.0 || r.calibrationSeconds < 0.0 || r.counts.cutFlux < 0.0)
-            in.fail("loop.render_seconds", "a negative time or flux");
         r.resumedBatches = l.done;
     }
 
