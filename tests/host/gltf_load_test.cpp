@@ -138,5 +138,24 @@ TEST(GltfLoad, NonFiniteVertex)
     EXPECT_NE(e.find("not finite"), std::string::npos) << e;
 }
 
+
+// Extensions a file uses and fenestra does not read are listed in one warning (Blender writes
+// KHR_materials_specular, KHR_texture_transform and others); one a file requires is an error.
+TEST(GltfLoad, UnsupportedExtensionsAreOneWarningOrAnError)
+{
+    const std::string dir = test::tempDir("gltf-extensions");
+    test::GltfWriter w;
+    w.addMeshNode("tri", kTri);
+    w.doc()["extensionsUsed"] = {"KHR_materials_transmission", "KHR_texture_transform", "KHR_materials_specular"};
+    const Scene s = loadGltf(w.write(dir + "/used.gltf"));
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find("extensions not supported, ignored: KHR_texture_transform, KHR_materials_specular"),
+              std::string::npos) << s.warnings[0];
+    w.doc()["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    w.doc()["extensionsUsed"].push_back("KHR_draco_mesh_compression");
+    const std::string e = errorOf(w.write(dir + "/required.gltf"));
+    EXPECT_NE(e.find("required.gltf: requires extension KHR_draco_mesh_compression"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace fen
