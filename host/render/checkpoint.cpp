@@ -86,17 +86,20 @@ bool firstDifference(const nlohmann::json& want, const nlohmann::json& have, con
 
 std::string buildId()
 {
-    Fnv f;
-    std::ifstream exe("/proc/self/exe", std::ios::binary);
-    char buf[1 << 16];
-    bool any = false;
-    while (exe.read(buf, sizeof buf) || exe.gcount() > 0) {
-        f.add(buf, static_cast<std::size_t>(exe.gcount()));
-        any = true;
-    }
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
-    return any ? cat("fenestra 0.1 build ", hex) : std::string("fenestra 0.1");
+    static const std::string id = [] {  // the executable does not change while it runs
+        Fnv f;
+        std::ifstream exe("/proc/self/exe", std::ios::binary);
+        char buf[1 << 16];
+        bool any = false;
+        while (exe.read(buf, sizeof buf) || exe.gcount() > 0) {
+            f.add(buf, static_cast<std::size_t>(exe.gcount()));
+            any = true;
+        }
+        char hex[17];
+        std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
+        return any ? cat("fenestra 0.1 build ", hex) : std::string("fenestra 0.1");
+    }();
+    return id;
 }
 
 std::uint64_t sceneHash(const Scene& s)
