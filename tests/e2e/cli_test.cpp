@@ -829,11 +829,21 @@ TEST(CliRender, OutOfRangeOptionsAreErrorsNotDefaults)
         {" --paths 1000 --method portal --portals plate --portal-complement -0.5", "--portal-complement"},
         {" --paths 1000 --adaptive-first-pass 0", "--adaptive-first-pass"},
         {" --paths 1000 --adaptive-max-cells 0", "--adaptive-max-cells"},
+        {" --paths 1000 --adaptive-defensive nan", "--adaptive-defensive nan"},
+        {" --paths 1000 --adaptive-max-depth -1", "--adaptive-max-depth -1"},
+        {" --paths 1000 --adaptive-prior -3", "--adaptive-prior"},
     };
     for (const auto& [args, fragment] : cases)
         expectError(run("render " + good + out + args), 1, fragment);
     // Beyond 2^63 - 1: refused as typed (it used to be clamped to 2^63 - 1 and never end).
     expectError(run("render " + good + out + " --paths 18446744073709551615"), 1, "--paths 18446744073709551615:");
+    // Grid depths whose first cells no machine holds: the cell limit's error at once, naming the
+    // options (it used to allocate them all and fail after seconds with "out of host memory").
+    const CliRun deep = run("render " + std::string(FEN_SCENES_DIR) + "/bay_window.gltf" + out +
+                            " --paths 1000 --base portal --adaptive-initial-depth 6 --adaptive-max-depth 8"
+                            " --adaptive-initial-sky-depth 5 --adaptive-max-sky-depth 6");
+    expectError(deep, 1, "--adaptive-max-cells 32768 is below the");
+    EXPECT_NE(deep.err.find("lower --adaptive-initial-depth"), std::string::npos) << deep.err;
     // Scientific notation is a count when it is a whole number.
     EXPECT_EQ(run("render " + good + out + " --paths 2e4 --width 8").status, 0);
 }
@@ -874,9 +884,9 @@ TEST(CliRender, OutputsNeverOverwriteInputs)
 TEST(CliRender, NonUtf8NamesAreWrittenNotLost)
 {
     const std::string dir = test::tempDir("cli-latin1");
-    const std::string scene = plateScene().write(dir + "/scene.gltf");
+    const std::string scene = plateScene().write(dir + "/sc\xE8ne.gltf");  // the scene's name too
     const std::string out = dir + "/caf\xE9.exr", ckpt = dir + "/r\xE9sum\xE9.ckpt";
-    const CliRun r = run("render " + scene + " --out '" + out + "' --checkpoint '" + ckpt +
+    const CliRun r = run("render '" + scene + "' --out '" + out + "' --checkpoint '" + ckpt +
                          "' --checkpoint-every 4batches --region 's\xFC" "d=0,0,8,8' --paths 20000 --width 16 --no-progress");
     ASSERT_EQ(r.status, 0) << r.err;
     ASSERT_TRUE(std::filesystem::exists(out));
@@ -884,9 +894,10 @@ TEST(CliRender, NonUtf8NamesAreWrittenNotLost)
     const auto j = nlohmann::json::parse(slurp(dir + "/caf\xE9.json"));
     EXPECT_NE(j["outputs"]["exr"].get<std::string>().find("caf\\xE9.exr"), std::string::npos);
     EXPECT_TRUE(j["regions"].contains("s\\xFCd"));
+    EXPECT_NE(j["scene"].get<std::string>().find("sc\\xE8ne.gltf"), std::string::npos);
     // The checkpoint written under that name resumes.
     ASSERT_TRUE(std::filesystem::exists(ckpt));
-    const CliRun q = run("render " + scene + " --out '" + dir + "/again.exr' --resume '" + ckpt +
+    const CliRun q = run("render '" + scene + "' --out '" + dir + "/again.exr' --resume '" + ckpt +
                          "' --region 's\xFC" "d=0,0,8,8' --paths 20000 --width 16 --no-progress");
     EXPECT_EQ(q.status, 0) << q.err;
     EXPECT_EQ(slurp(dir + "/again.exr"), slurp(out));
