@@ -16,6 +16,7 @@
 #include "cl/cl_error.h"
 #include "commands.h"
 #include "emission/strategy_registry.h"
+#include "trace/device_bvh.h"
 #include "util/error.h"
 
 namespace {
@@ -37,15 +38,11 @@ std::vector<int> parseWidths(const std::string& s)
     std::stringstream in(s);
     std::string item;
     while (std::getline(in, item, ',')) {
-        if (item == "2" || item == "bvh2")
-            out.push_back(2);
-        else if (item == "4" || item == "bvh4")
-            out.push_back(4);
-        else if (item == "8" || item == "bvh8")
-            out.push_back(8);
-        else
+        const int width = fen::bvhLayoutWidth(item);
+        if (width == 0)
             throw fen::Error("--layout takes bvh2, bvh4, bvh8, a comma-separated list or 'all', not '" +
                              item + "'");
+        out.push_back(width);
     }
     return out;
 }

@@ -1,12 +1,14 @@
 // render_options.cpp — registering and checking the options of `fenestra render` (render_options.h).
 #include "render/render_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include <CLI/CLI.hpp>
 
 #include "emission/strategy_registry.h"
+#include "trace/device_bvh.h"
 #include "util/error.h"
 
 namespace fen {
@@ -146,7 +148,9 @@ void validateRenderOptions(RenderOptions& o)
     requireRange(o.cameraSpp, "--camera-spp", 1, 4096);
     requireRange(o.poolSize, "--pool", std::int64_t{1}, std::int64_t{1} << 26);
     requirePositiveFinite(o.exposure, "--exposure", 1e30);
-    requireRange(o.rouletteDepth, "--roulette-depth", 0, o.maxBouncesValue(), " (at most --max-bounces)");
+    // The renderer's own bound (renderer.cpp), and no deeper than a path may go.
+    requireRange(o.rouletteDepth, "--roulette-depth", 0, std::min(64, o.maxBouncesValue()),
+                 " (at most 64, and at most --max-bounces)");
     requireRange(o.split, "--split", 1, 1024);
     if (o.splitWeight && !(std::isfinite(*o.splitWeight) && *o.splitWeight > 0.0))
         throw Error(cat("--split-weight ", *o.splitWeight, ": must be a positive, finite multiple of the mean weight"));
@@ -160,10 +164,9 @@ void validateRenderOptions(RenderOptions& o)
     if (o.progressOn || o.progressOff)
         o.progress = o.progressOn;
     if (o.layout) {
-        const std::string& l = *o.layout;
-        o.bvhWidth = l == "bvh2" || l == "2" ? 2 : l == "bvh4" || l == "4" ? 4 : l == "bvh8" || l == "8" ? 8 : 0;
+        o.bvhWidth = bvhLayoutWidth(*o.layout);
         if (o.bvhWidth == 0)
-            throw Error(cat("--layout '", printable(l, 40), "': takes one of bvh2, bvh4, bvh8"));
+            throw Error(cat("--layout '", printable(*o.layout, 40), "': takes one of bvh2, bvh4, bvh8"));
     }
 }
 

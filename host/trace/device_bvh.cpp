@@ -7,6 +7,14 @@ namespace fen {
 
 int defaultBvhWidth(bool gpu) { return gpu ? 2 : 8; }
 
+int bvhLayoutWidth(const std::string& name)
+{
+    for (const int w : {2, 4, 8})
+        if (name == std::to_string(w) || name == "bvh" + std::to_string(w))
+            return w;
+    return 0;
+}
+
 DeviceBvh::DeviceBvh(ocl::Context& ctx, const FlatBvh& bvh)
     : width_(bvh.width),
       nodes_(ctx.buffer(CL_MEM_READ_ONLY, bvh.nodeBytes(), "BVH nodes", bvh.nodeWords.data())),

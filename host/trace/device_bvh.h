@@ -2,6 +2,7 @@
 // (kernels/trace_rays.cl, built for the tree's width).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "bvh_flat.h"
@@ -11,6 +12,9 @@ namespace fen {
 
 // The layout a device traverses fastest (measured: docs/bvh.md).
 int defaultBvhWidth(bool gpu);
+
+// The width a layout's name gives: "bvh2" or "2" is 2, likewise 4 and 8; 0 for any other name.
+int bvhLayoutWidth(const std::string& name);
 
 class DeviceBvh {
 public:
