@@ -32,6 +32,7 @@
 #include "render/renderer.h"
 #include "scene/gltf_load.h"
 #include "sky/sky_spec.h"
+#include "sky/solar_position.h"
 #include "util/error.h"
 
 namespace fen {
@@ -88,21 +89,15 @@ std::string withExtension(const std::string& exrPath, const std::string& ext)
     return exrPath.substr(0, exrPath.size() - 4) + ext;
 }
 
-}  // namespace
-
 // The sun and the sky rendered (after the command line's changes), for the JSON.
 nlohmann::json sunJson(const Sun& sun)
 {
     if (!sun.present)
         return nullptr;
-    const glm::dvec3 to = -sun.travelDirection;
-    double az = std::atan2(to.x, -to.z) * 180.0 / M_PI;
-    if (az < 0.0)
-        az += 360.0;
+    double altitude = 0.0, azimuth = 0.0;
+    altitudeAzimuthOf(-sun.travelDirection, &altitude, &azimuth);
     const glm::dvec3 e = sun.illuminanceRgb_lux;
-    return {{"altitude_deg", std::asin(std::clamp(to.y, -1.0, 1.0)) * 180.0 / M_PI},
-            {"azimuth_deg", az},
-            {"normal_illuminance_lux", luminance(e.r, e.g, e.b)}};
+    return {{"altitude_deg", altitude}, {"azimuth_deg", azimuth}, {"normal_illuminance_lux", luminance(e.r, e.g, e.b)}};
 }
 
 nlohmann::json skyJson(const SkySpec& spec, const std::optional<Goniogram>& sky)
@@ -127,6 +122,8 @@ nlohmann::json skyJson(const SkySpec& spec, const std::optional<Goniogram>& sky)
     j["horizontal_illuminance_lux"] = sky->illuminance(glm::dvec3(0.0, 1.0, 0.0));
     return j;
 }
+
+}  // namespace
 
 int runRender(const RenderOptions& opt)
 {

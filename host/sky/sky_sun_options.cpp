@@ -172,10 +172,7 @@ SkySunReport applySkySunOptions(const SkySunOptions& o, Scene* scene)
     }
     SkySpec& sky = scene->sky;
     if (sky.type == SkySpec::Type::Cie && (skySun && (o.sky || towardsSun))) {
-        sky.sunAltitudeDeg = std::asin(std::clamp(skySun->y, -1.0, 1.0)) * 180.0 / M_PI;
-        sky.sunAzimuthDeg = std::atan2(skySun->x, -skySun->z) * 180.0 / M_PI;
-        if (sky.sunAzimuthDeg < 0.0)
-            sky.sunAzimuthDeg += 360.0;
+        altitudeAzimuthOf(*skySun, &sky.sunAltitudeDeg, &sky.sunAzimuthDeg);
     } else if (sky.type == SkySpec::Type::Cie && o.sky && !skySun) {
         const CieSkyType& p = cieSkyType(sky.cieType);
         if (p.c != 0.0 || p.e != 0.0)  // the sky's indicatrix depends on where the sun is

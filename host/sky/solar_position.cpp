@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sky/goniogram.h"
 #include "util/error.h"
 
 namespace fen {
@@ -179,8 +180,15 @@ SolarPosition solarPosition(double latitudeDeg, double longitudeDeg, const Local
 
 glm::dvec3 directionFromAltitudeAzimuth(double altitudeDeg, double azimuthDeg)
 {
-    const double h = altitudeDeg * kDeg, a = azimuthDeg * kDeg;
-    return glm::dvec3(std::cos(h) * std::sin(a), std::sin(h), -std::cos(h) * std::cos(a));
+    return skyDirection((90.0 - altitudeDeg) * kDeg, azimuthDeg * kDeg);
+}
+
+void altitudeAzimuthOf(const glm::dvec3& towards, double* altitudeDeg, double* azimuthDeg)
+{
+    double theta = 0.0, phi = 0.0;
+    skyAngles(towards, &theta, &phi);
+    *altitudeDeg = 90.0 - theta / kDeg;
+    *azimuthDeg = phi / kDeg;
 }
 
 }  // namespace fen

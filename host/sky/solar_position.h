@@ -43,7 +43,9 @@ struct SolarPosition {
 SolarPosition solarPosition(double latitudeDeg, double longitudeDeg, const LocalTime& t);
 
 // The unit direction towards a sky point at altitude and azimuth (degrees) in fenestra's frame:
-// +x east, +y up, -z north.
+// +x east, +y up, -z north (the sky's own skyDirection, sky/goniogram.h, in degrees of altitude);
+// and back, the azimuth in [0, 360).
 glm::dvec3 directionFromAltitudeAzimuth(double altitudeDeg, double azimuthDeg);
+void altitudeAzimuthOf(const glm::dvec3& towards, double* altitudeDeg, double* azimuthDeg);
 
 }  // namespace fen
