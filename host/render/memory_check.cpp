@@ -6,7 +6,7 @@
 #include <unistd.h>
 
 #include "render/film.h"
-#include "shared/fen_render.h"
+#include "render/path_loop.h"
 #include "util/error.h"
 
 namespace fen {
@@ -22,10 +22,8 @@ MemoryNeeds renderMemoryNeeds(int width, int height, std::uint64_t poolSlots)
     const std::uint64_t px = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
     MemoryNeeds n;
     const std::uint64_t accum = px * Film::kWordsPerPixel * 8, camera = px * 16;
-    const std::uint64_t perSlot = sizeof(dev::PathState) + sizeof(dev::SurfaceHit) + sizeof(dev::SplitState) +
-                                  sizeof(dev::Connection);
-    n.deviceBytes = accum + camera + poolSlots * perSlot;
-    n.largestBufferBytes = std::max<std::uint64_t>(accum, poolSlots * sizeof(dev::PathState));
+    n.deviceBytes = accum + camera + poolSlots * poolSlotBytes();
+    n.largestBufferBytes = std::max<std::uint64_t>(accum, poolSlots * poolLargestSlotBytes());
     // The host: the batch sums (rgb and Y^2), the batch's image and the mean, the noise image, the
     // EXRs and PNGs being encoded: about 16 doubles a pixel.
     n.hostBytes = px * 16 * 8;

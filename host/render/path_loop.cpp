@@ -22,14 +22,21 @@ std::string kernelModeName(KernelMode m) { return m == KernelMode::Fused ? "fuse
 
 KernelMode defaultKernelMode(bool gpu) { return gpu ? KernelMode::Wavefront : KernelMode::Fused; }
 
+std::uint64_t poolSlotBytes()
+{
+    return sizeof(dev::PathState) + sizeof(dev::SurfaceHit) + sizeof(dev::SplitState) + sizeof(dev::Connection);
+}
+
+std::uint64_t poolLargestSlotBytes()
+{
+    return std::max({sizeof(dev::PathState), sizeof(dev::SurfaceHit), sizeof(dev::SplitState), sizeof(dev::Connection)});
+}
+
 std::uint32_t defaultPoolSlots(const ocl::DeviceInfo& device)
 {
     if (!device.isGpu())
         return 1u << 16;
-    const std::uint64_t slotBytes = sizeof(dev::PathState) + sizeof(dev::SurfaceHit) +
-                                    sizeof(dev::SplitState) + sizeof(dev::Connection);
-    const std::uint64_t largest = std::max({sizeof(dev::PathState), sizeof(dev::SurfaceHit),
-                                            sizeof(dev::SplitState), sizeof(dev::Connection)});
+    const std::uint64_t slotBytes = poolSlotBytes(), largest = poolLargestSlotBytes();
     std::uint32_t slots = 1u << 21;
     while (slots > (1u << 16) && (slots * slotBytes > device.globalMemBytes / 4 ||
                                   slots * largest > device.maxAllocBytes))

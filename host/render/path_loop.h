@@ -36,6 +36,10 @@ KernelMode defaultKernelMode(bool gpu);
 // quarter of the device's memory. On an H200 (docs/results/gpu.md) 2^22 gave uniform 4.5 % more
 // paths/s but adaptive 20-23 % fewer, so the default stays where both were measured well.
 std::uint32_t defaultPoolSlots(const ocl::DeviceInfo& device);
+// A path slot's device bytes over the pool's four buffers (state, hit, split state, connection),
+// and the element of the largest of them: what a pool of N slots takes, and its largest buffer.
+std::uint64_t poolSlotBytes();
+std::uint64_t poolLargestSlotBytes();
 
 // What a batch's counters say (summed over the iterations of the batch).
 struct BatchCounts {
