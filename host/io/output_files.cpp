@@ -78,8 +78,10 @@ std::string besides(const std::string& path, const std::string& suffix)
     return ((p.parent_path().empty() ? fs::path(".") : p.parent_path()) / ("." + p.filename().string() + suffix)).string();
 }
 
-// Writes `bytes` to `path` through a temporary and a rename (the journal itself).
-void writeAtomically(const std::string& path, const std::string& bytes)
+// `bytes` in a new temporary file beside `path` (every write, the flush and fsync checked), with the
+// permissions the user's umask gives a new file (mkstemp makes it private; outputs are ordinary
+// files, as open(2) with 0666 would make them). Returns its name; on failure nothing is left.
+std::string writeTemporary(const std::string& path, const std::string& bytes)
 {
     std::string tmp;
     const int fd = createTemporary(path, &tmp);
@@ -90,7 +92,19 @@ void writeAtomically(const std::string& path, const std::string& bytes)
         ::unlink(tmp.c_str());
         throw;
     }
-    ::close(fd);
+    if (::close(fd) != 0) {
+        const int e = errno;
+        ::unlink(tmp.c_str());
+        throw Error(cat(path, ": cannot write: ", errnoText(e)));
+    }
+    ::chmod(tmp.c_str(), 0666 & ~processUmask());
+    return tmp;
+}
+
+// Writes `bytes` to `path` through a temporary and a rename (the journal itself).
+void writeAtomically(const std::string& path, const std::string& bytes)
+{
+    const std::string tmp = writeTemporary(path, bytes);
     if (std::rename(tmp.c_str(), path.c_str()) != 0) {
         ::unlink(tmp.c_str());
         throw Error(cat(path, ": cannot write: ", errnoText(errno)));
@@ -129,22 +143,8 @@ void OutputFiles::commit()
 {
     std::vector<std::string> temporaries;
     try {
-        for (const auto& [path, bytes] : files_) {
-            std::string tmp;
-            const int fd = createTemporary(path, &tmp);
-            temporaries.push_back(tmp);
-            try {
-                writeAll(fd, path, bytes);
-            } catch (...) {
-                ::close(fd);
-                throw;
-            }
-            if (::close(fd) != 0)
-                throw Error(cat(path, ": cannot write: ", errnoText(errno)));
-            // mkstemp makes the file private; outputs are ordinary files, with the permissions the
-            // user's umask gives a new file (as open(2) with 0666 would).
-            ::chmod(tmp.c_str(), 0666 & ~processUmask());
-        }
+        for (const auto& [path, bytes] : files_)
+            temporaries.push_back(writeTemporary(path, bytes));
     } catch (...) {
         for (const auto& t : temporaries)
             ::unlink(t.c_str());
