@@ -4,9 +4,12 @@
  * which may write a camera connection for connect.cl. Writes paths[i], splits[i] while branches of
  * a split wait, and connections[i] (pixel FEN_INVALID_ID when there is none). Atomics: the alive
  * counter (per work-group), the max-depth counter. The guide's tables (lib/guide.h) are read at
- * first diffuse vertices when guide_params->slots > 0.
+ * first diffuse vertices when guide_params->slots > 0. Built with -DFEN_HAS_SENSORS, the segment
+ * that led to the hit (or to the miss) first adds its flux to the sensor cells it crosses
+ * (lib/sensor.h); without it the sensor arguments are never read.
  */
 #include "lib/group_count.h"
+#include "lib/sensor.h"
 #include "lib/shade_path.h"
 
 /* Shades slot i; returns 1 if its path goes on. A branch of a split path that ends hands its slot
@@ -16,7 +19,7 @@ static inline uint shade_one(uint i, global const RenderParams* params, const Gu
                              global SplitState* splits, global const SurfaceHit* hits,
                              const SurfaceMaterials* sm,
                              global const DevCamera* cam, global Connection* connections,
-                             volatile global ulong* counters)
+                             const Sensors* sensors, volatile global ulong* counters)
 {
     if (i >= params->pool_size)
         return 0;
@@ -28,6 +31,12 @@ static inline uint shade_one(uint i, global const RenderParams* params, const Gu
     if (p.flags & FEN_PATH_SPLIT)
         s = splits[i];
     const SurfaceHit h = hits[i];
+#ifdef FEN_HAS_SENSORS
+    const float t_max = as_uint(h.normal.w) != FEN_INVALID_ID ? distance(h.pos.xyz, p.org.xyz) : INFINITY;
+    sensor_record(sensors, p.org.xyz, p.dir.xyz, t_max, p.beta, counters);
+#else
+    (void)sensors;
+#endif
     int alive = 0;
     if (as_uint(h.normal.w) != FEN_INVALID_ID) {
         Connection c;
@@ -53,12 +62,17 @@ kernel void shade_paths(global const RenderParams* params, global PathState* pat
                         global const float4* prim_uv, global const uint* texels, global const DevCamera* cam,
                         global Connection* connections, global const GuideParams* guide_params,
                         global const uint* guide_tables,
+                        global const DevSensorInfo* sensor_info, global const DevSensorPlane* sensor_planes,
+                        global const DevSensorCell* sensor_cells, global const uint* sensor_bucket_start,
+                        global const uint* sensor_bucket_cells, volatile global ulong* sensor_accum,
                         volatile global ulong* counters)
 {
     local uint alive_in_group;
     const Guide guide = {guide_params, guide_tables};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
+    const Sensors sensors = {sensor_info, sensor_planes, sensor_cells, sensor_bucket_start, sensor_bucket_cells,
+                             sensor_accum};
     const uint alive = shade_one(get_global_id(0), params, &guide, paths, splits, hits, &sm, cam, connections,
-                                 counters);
+                                 &sensors, counters);
     group_count_add(counters + FEN_CTR_ALIVE, alive, &alive_in_group);
 }

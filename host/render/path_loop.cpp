@@ -45,7 +45,8 @@ std::uint32_t defaultPoolSlots(const ocl::DeviceInfo& device)
 }
 
 PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy,
-                   Film& film, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
+                   Film& film, const DeviceSensors& sensors, const DeviceSky& sky, const dev::DevCamera& camera,
+                   std::uint32_t pool,
                    KernelMode mode)
     : ctx_(ctx), mode_(mode), strategy_(strategy), film_(film), pool_(pool)
 {
@@ -61,6 +62,9 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     const auto t0 = std::chrono::steady_clock::now();
     const auto defs = scene.defines();
     const EmissionKernels ek = strategy.kernels();
+    auto shadeDefs = defs;
+    if (sensors.any())
+        shadeDefs.push_back("FEN_HAS_SENSORS=1");
     auto connectDefs = defs;
     if (ek.gatherStats)
         connectDefs.push_back("FEN_EMISSION_STATS=1");
@@ -72,13 +76,15 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     if (mode == KernelMode::Fused) {
         auto fusedDefs = connectDefs;
         fusedDefs.push_back("FEN_FUSED=1");
+        if (sensors.any())
+            fusedDefs.push_back("FEN_HAS_SENSORS=1");
         fused_ = cl::Kernel(ctx.program(ek.emitProgram, fusedDefs), "trace_fused");
         // Enough work-items to keep every compute unit busy while the last chunks drain.
         fusedItems_ = std::size_t{std::max<cl_uint>(1, ctx.info().computeUnits)} * 16;
     }
     emit_ = cl::Kernel(ctx.program(ek.emitProgram, defs), "emit_paths");
     intersect_ = cl::Kernel(ctx.program("intersect.cl", defs), "intersect_paths");
-    shade_ = cl::Kernel(ctx.program("shade.cl", defs), "shade_paths");
+    shade_ = cl::Kernel(ctx.program("shade.cl", shadeDefs), "shade_paths");
     connect_ = cl::Kernel(ctx.program("connect.cl", connectDefs), "connect_paths");
     cameraPass_ = cl::Kernel(ctx.program("camera_pass.cl", defs), "camera_pass");
     const DeviceBvh& b = scene.bvh();
@@ -92,7 +98,9 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
                                          &scene.primMaterial(), &scene.materials(), &scene.primUv(),
                                          &scene.texels(), &cameraBuf_,
                                          &film.accumulators(), ek.cellStats, pixelScale,
-                                         &guide->params(), &guide->tables(), &guide->stats()};
+                                         &guide->params(), &guide->tables(), &guide->stats(),
+                                         &sensors.info(), &sensors.planes(), &sensors.cellTable(),
+                                         &sensors.bucketStart(), &sensors.bucketCells(), &sensors.accumulators()};
         for (const cl::Buffer* buf : fusedArgs)
             fused_.setArg(a++, *buf);
         strategy.bindEmitArgs(fused_, a);  // the strategy's arguments last; checks the arity
@@ -102,7 +110,9 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     emit_.setArg(2, paths_);
     ocl::setKernelArgs(intersect_, paths_, hits_, pool, b.nodes(), b.packets());
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
-                       scene.primUv(), scene.texels(), cameraBuf_, connections_, guide->params(), guide->tables(), counters_);
+                       scene.primUv(), scene.texels(), cameraBuf_, connections_, guide->params(), guide->tables(),
+                       sensors.info(), sensors.planes(), sensors.cellTable(), sensors.bucketStart(),
+                       sensors.bucketCells(), sensors.accumulators(), counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), film.accumulators(), *ek.cellStats, *pixelScale, guide->stats(),
                        counters_);

@@ -18,6 +18,7 @@
 #include "emission/strategy.h"
 #include "render/device_scene.h"
 #include "render/film.h"
+#include "sensor/device_sensors.h"
 #include "shared/fen_render.h"
 
 namespace fen {
@@ -52,9 +53,11 @@ struct BatchCounts {
 // Runs ranges of paths through the stages, in the kernel form `mode`.
 class PathLoop {
 public:
+    // `sensors`: the cells every segment adds its flux to (an empty set: the kernels are built
+    // without them).
     PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy, Film& film,
-              const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
-              KernelMode mode = KernelMode::Wavefront);
+             const DeviceSensors& sensors, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
+             KernelMode mode = KernelMode::Wavefront);
     KernelMode mode() const { return mode_; }
 
     std::uint32_t pool() const { return pool_; }

@@ -31,6 +31,8 @@
 #include "render/path_loop.h"
 #include "render/renderer.h"
 #include "scene/gltf_load.h"
+#include "sensor/sensor_options.h"
+#include "sensor/sensor_report.h"
 #include "sky/sky_spec.h"
 #include "sky/solar_position.h"
 #include "util/error.h"
@@ -84,11 +86,6 @@ private:
     void (*oldPipe_)(int);
 };
 
-std::string withExtension(const std::string& exrPath, const std::string& ext)
-{
-    return exrPath.substr(0, exrPath.size() - 4) + ext;
-}
-
 // The sun and the sky rendered (after the command line's changes), for the JSON.
 nlohmann::json sunJson(const Sun& sun)
 {
@@ -128,8 +125,15 @@ nlohmann::json skyJson(const SkySpec& spec, const std::optional<Goniogram>& sky)
 int runRender(const RenderOptions& opt)
 {
     const auto t0 = std::chrono::steady_clock::now();
-    if (opt.outPath.size() < 5 || opt.outPath.substr(opt.outPath.size() - 4) != ".exr")
+    const bool noImage = opt.sensors.noImage;
+    const bool namesExr = opt.outPath.size() >= 5 && opt.outPath.substr(opt.outPath.size() - 4) == ".exr";
+    if (!namesExr && !noImage)
         throw Error(cat("--out '", printable(opt.outPath), "' must name an .exr file"));
+    if (opt.outPath.empty() || opt.outPath.back() == '/')
+        throw Error(cat("--out '", printable(opt.outPath), "' must name a file"));
+    // PATH of PATH.exr: every output is PATH.something (with --no-image, --out may be PATH itself).
+    const std::string base = namesExr ? opt.outPath.substr(0, opt.outPath.size() - 4) : opt.outPath;
+    const auto withExtension = [&](const std::string&, const std::string& ext) { return base + ext; };
     const EmissionSettings emission = opt.emission.settings();
     const std::string checkpointPath = opt.checkpointPath.value_or(""), resumePath = opt.resumePath.value_or("");
     const std::string referencePath = opt.referencePath.value_or("");
@@ -139,7 +143,9 @@ int runRender(const RenderOptions& opt)
     const std::string jsonPath = withExtension(opt.outPath, ".json");
     const std::string noisePath = withExtension(opt.outPath, ".noise.exr");
     const std::string errorPath = withExtension(opt.outPath, ".error.png");
-    for (const std::string& p : {opt.outPath, pngPath, jsonPath, noisePath, errorPath})
+    const std::string sensorCsvPath = withExtension(opt.outPath, ".sensors.csv");
+    const std::string falsePath = withExtension(opt.outPath, ".falsecolor.png");
+    for (const std::string& p : {opt.outPath, pngPath, jsonPath, noisePath, errorPath, sensorCsvPath, falsePath})
         checkOutputPath(p, "--out");
     if (!checkpointPath.empty()) {
         checkOutputPath(checkpointPath, "--checkpoint");
@@ -150,13 +156,6 @@ int runRender(const RenderOptions& opt)
         requireRegularFile(resumePath, "--resume");
     if (!referencePath.empty())
         requireRegularFile(referencePath, "--reference");
-    // One render at a time writes this set; what a killed one left is finished or removed first.
-    std::vector<std::string> outputSet{opt.outPath, noisePath, pngPath, errorPath, jsonPath};
-    if (!checkpointPath.empty())
-        outputSet.push_back(checkpointPath);
-    const OutputSetLock outputLock(outputSet);
-    if (!outputLock.recovered().empty())
-        std::fprintf(stderr, "fenestra: warning: %s: %s\n", printable(opt.outPath).c_str(), outputLock.recovered().c_str());
 
     Scene scene = loadGltf(opt.scenePath);
     // No output may overwrite an input: the scene and the files it reads, the reference, and the
@@ -166,12 +165,14 @@ int runRender(const RenderOptions& opt)
         for (std::size_t i = 0; i < scene.files.size(); ++i)
             inputs.emplace_back(i == 0 ? "the scene" : "a file the scene reads", scene.files[i]);
         inputs.emplace_back("the --reference image", referencePath);
-        for (const std::string& out : {opt.outPath, pngPath, jsonPath, noisePath, errorPath})
+        for (const std::string& f : opt.sensors.pointsFiles)
+            inputs.emplace_back("a --sensor-points file", f);
+        for (const std::string& out : {opt.outPath, pngPath, jsonPath, noisePath, errorPath, sensorCsvPath, falsePath})
             refuseOverwritingInputs(out, "--out", inputs);
         if (!checkpointPath.empty())
             refuseOverwritingInputs(checkpointPath, "--checkpoint", inputs);
         inputs = {{"the checkpoint to resume (--resume)", resumePath}};
-        for (const std::string& out : {opt.outPath, pngPath, jsonPath, noisePath, errorPath})
+        for (const std::string& out : {opt.outPath, pngPath, jsonPath, noisePath, errorPath, sensorCsvPath, falsePath})
             refuseOverwritingInputs(out, "--out", inputs);
     }
     const SkySunReport skySun = applySkySunOptions(opt.skySun, &scene);
@@ -179,10 +180,36 @@ int runRender(const RenderOptions& opt)
         std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
     for (const auto& w : skySun.warnings)
         std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
-    const CameraSpec& camera = findCamera(scene, opt.camera);
+    // The sensors: the scene's marked nodes, the work plane, the points files (DESIGN.md §8).
+    const SensorSet sensors = buildSensors(opt.sensors, scene);
+    if (noImage && sensors.empty())
+        throw Error(cat("--no-image renders sensors alone, and ", printable(scene.source),
+                        " has none: give --sensor-points FILE or --work-plane NODE, or mark a node extras.sensor"));
+    // One picture per sensor: PATH.sensors.png for the first, PATH.sensors-2.png, ... after it.
+    std::vector<std::string> sensorPngPaths;
+    for (std::size_t k = 0; k < sensors.sensors.size(); ++k)
+        sensorPngPaths.push_back(withExtension(opt.outPath, k == 0 ? std::string(".sensors.png") : cat(".sensors-", k + 1, ".png")));
+    for (const std::string& p : sensorPngPaths)
+        checkOutputPath(p, "--out");
+    // One render at a time writes this set; what a killed one left is finished or removed first.
+    std::vector<std::string> outputSet{opt.outPath, noisePath, pngPath, errorPath, sensorCsvPath, falsePath};
+    outputSet.insert(outputSet.end(), sensorPngPaths.begin(), sensorPngPaths.end());
+    outputSet.push_back(jsonPath);
+    if (!checkpointPath.empty())
+        outputSet.push_back(checkpointPath);
+    const OutputSetLock outputLock(outputSet);
+    if (!outputLock.recovered().empty())
+        std::fprintf(stderr, "fenestra: warning: %s: %s\n", printable(opt.outPath).c_str(), outputLock.recovered().c_str());
+
+    // No image: no camera is needed, and a one-pixel film that nothing reaches stands in.
+    CameraSpec noCamera;
+    noCamera.yfovRad = 1.0;
+    noCamera.nodeName = "none";
+    const CameraSpec& camera = noImage ? noCamera : findCamera(scene, opt.camera);
     const std::optional<Goniogram> sky = buildSky(scene.sky);
-    int width = 0, height = 0;
-    resolveImageSize(camera, opt.width.value_or(0), opt.height.value_or(0), &width, &height);
+    int width = 1, height = 1;
+    if (!noImage)
+        resolveImageSize(camera, opt.width.value_or(0), opt.height.value_or(0), &width, &height);
     const Roi roi = parseRoi(opt.roi.value_or(""), width, height);
     // Named regions: a work plane, a wall -- each reported like the ROI (regions.NAME in the JSON).
     std::vector<std::pair<std::string, Roi>> regions;
@@ -230,6 +257,8 @@ int runRender(const RenderOptions& opt)
     settings.splitWeight = opt.splitWeight.value_or(settings.splitWeight);
     settings.progress = opt.progress.value_or(isatty(STDERR_FILENO) != 0);
     settings.rois = {roi};
+    settings.sensors = &sensors;
+    settings.noImage = noImage;
     for (const auto& reg : regions)
         settings.rois.push_back(reg.second);
     settings.checkpointPath = checkpointPath;
@@ -280,11 +309,26 @@ int runRender(const RenderOptions& opt)
     const Preview preview = pngPreview(r.image, st.meanLuminance_cd_m2, opt.exposure.value_or(0.0));
     const double exposure = preview.exposure;
     OutputFiles outputs;
-    outputs.add(opt.outPath, encodeExr(r.image));
-    outputs.add(noisePath, encodeExr(noise));
-    outputs.add(pngPath, preview.png);
+    if (!noImage) {
+        outputs.add(opt.outPath, encodeExr(r.image));
+        outputs.add(noisePath, encodeExr(noise));
+        outputs.add(pngPath, preview.png);
+    }
     if (reference)
         outputs.add(errorPath, errorPng(r.image, *reference, referenceMean));
+    // Sensors: cells as CSV, summaries in the JSON; a daylight-factor study divides by the sky's
+    // unobstructed horizontal illuminance (DESIGN.md §8).
+    std::optional<DaylightFactorSpec> df;
+    if (opt.sensors.daylightFactor && sky)
+        df = DaylightFactorSpec{sky->illuminance(glm::dvec3(0.0, 1.0, 0.0)), opt.sensors.dfThresholdValue()};
+    nlohmann::json sensorJson = nullptr;
+    if (r.sensors) {
+        for (double v : r.sensors->mean())
+            if (!std::isfinite(v))
+                throw Error("internal error: a sensor cell holds a non-finite value");
+        outputs.add(sensorCsvPath, sensorCsv(sensors, *r.sensors, df));
+        sensorJson = sensorSummary(sensors, *r.sensors, df);
+    }
     const double totalSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -360,6 +404,7 @@ int runRender(const RenderOptions& opt)
         regionsJson[regions[k].first] = e;
     }
     j["regions"] = regionsJson;
+    j["sensors"] = sensorJson;
     j["emission"] = r.emission;
     j["progress"] = progress;
     j["counters"] = {{"bad_contributions", n.badContributions},
@@ -373,22 +418,55 @@ int runRender(const RenderOptions& opt)
     for (const auto& [name, e] : r.kernels)
         j["kernels"][name] = {{"launches", e.launches}, {"device_seconds", e.deviceSeconds}};
     j["png_exposure"] = exposure;
-    j["outputs"] = {{"exr", opt.outPath}, {"png", pngPath}, {"json", jsonPath}, {"noise_exr", noisePath}};
+    j["image"] = !noImage;
+    j["outputs"] = {{"json", jsonPath}};
+    if (!noImage) {
+        j["outputs"]["exr"] = opt.outPath;
+        j["outputs"]["png"] = pngPath;
+        j["outputs"]["noise_exr"] = noisePath;
+    }
+    if (r.sensors)
+        j["outputs"]["sensors_csv"] = sensorCsvPath;
     if (reference)
         j["outputs"]["error_png"] = errorPath;
     // Names are bytes: what is not UTF-8 is written as \xNN (util/utf8.h), so this cannot fail now.
     outputs.add(jsonPath, dumpUtf8(std::move(j), 2) + "\n");  // last: it names the others
     outputs.commit();
 
-    std::printf("%s: %d x %d, %llu paths in %d batches, %.1f s (%.2f Mrays/s)\n", opt.outPath.c_str(),
-                width, height, static_cast<unsigned long long>(r.paths), r.batches, r.renderSeconds,
-                r.renderSeconds > 0.0 ? lightRays / r.renderSeconds * 1e-6 : 0.0);
-    std::printf("ROI [%d,%d)-[%d,%d): mean luminance %.4g cd/m2 (+- %.2g), RMS %.4g, noise %.3g",
-                roi.x0, roi.y0, roi.x1, roi.y1, st.meanLuminance_cd_m2,
-                r.roiMeanStdErr(0), st.rmsLuminance_cd_m2, st.noiseStdErr_cd_m2);
-    if (st.rmse_cd_m2)
-        std::printf(", RMSE %.4g, relMSE %.4g", *st.rmse_cd_m2, *st.relMse);
-    std::printf("\nalso wrote %s, %s and %s\n", pngPath.c_str(), jsonPath.c_str(), noisePath.c_str());
+    if (noImage)
+        std::printf("%s: sensors only, %llu paths in %d batches, %.1f s (%.2f Mrays/s)\n", base.c_str(),
+                    static_cast<unsigned long long>(r.paths), r.batches, r.renderSeconds,
+                    r.renderSeconds > 0.0 ? lightRays / r.renderSeconds * 1e-6 : 0.0);
+    else
+        std::printf("%s: %d x %d, %llu paths in %d batches, %.1f s (%.2f Mrays/s)\n", opt.outPath.c_str(),
+                    width, height, static_cast<unsigned long long>(r.paths), r.batches, r.renderSeconds,
+                    r.renderSeconds > 0.0 ? lightRays / r.renderSeconds * 1e-6 : 0.0);
+    if (!noImage) {
+        std::printf("ROI [%d,%d)-[%d,%d): mean luminance %.4g cd/m2 (+- %.2g), RMS %.4g, noise %.3g",
+                    roi.x0, roi.y0, roi.x1, roi.y1, st.meanLuminance_cd_m2,
+                    r.roiMeanStdErr(0), st.rmsLuminance_cd_m2, st.noiseStdErr_cd_m2);
+        if (st.rmse_cd_m2)
+            std::printf(", RMSE %.4g, relMSE %.4g", *st.rmse_cd_m2, *st.relMse);
+        std::printf("\n");
+    }
+    for (const auto& [name, e] : sensorJson.is_object() ? sensorJson.items() : nlohmann::json::object().items()) {
+        std::printf("sensor %s: %zu cells, mean %.4g lux (+- %.2g), min %.4g, max %.4g, uniformity %.3g",
+                    name.c_str(), e["cells"].get<std::size_t>(), e["mean_lux"].get<double>(),
+                    e["mean_lux_std_err"].is_null() ? 0.0 : e["mean_lux_std_err"].get<double>(),
+                    e["min_lux"].get<double>(), e["max_lux"].get<double>(), e["uniformity"].get<double>());
+        if (e.contains("daylight_factor")) {
+            const auto& d = e["daylight_factor"];
+            std::printf("; DF mean %.3g %% (+- %.2g), %.0f %% of the area at or above %g %%", d["mean_pct"].get<double>(),
+                        d["mean_pct_std_err"].is_null() ? 0.0 : d["mean_pct_std_err"].get<double>(),
+                        100.0 * d["area_share_above"].get<double>(), d["threshold_pct"].get<double>());
+        }
+        std::printf("\n");
+    }
+    if (noImage)
+        std::printf("wrote %s%s\n", jsonPath.c_str(), r.sensors ? (" and " + sensorCsvPath).c_str() : "");
+    else
+        std::printf("also wrote %s, %s and %s%s\n", pngPath.c_str(), jsonPath.c_str(), noisePath.c_str(),
+                    r.sensors ? (", " + sensorCsvPath).c_str() : "");
     // What the strategy wants the user to know (e.g. portal emission's measured blind spot).
     for (const std::string& w : r.emissionWarnings)
         std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());

@@ -78,6 +78,7 @@ void addRenderOptions(CLI::App& r, RenderOptions& o)
     r.add_option("--checkpoint-every", o.checkpointEvery, "How often: N min, N s or N batches (default 10min)");
     r.add_option("--resume", o.resumePath, "Continue the render saved in this checkpoint (same scene and options)");
     addSkySunOptions(&r, &o.skySun);
+    addSensorOptions(&r, &o.sensors);
     r.add_flag("--progress", o.progressOn, "Show progress even when stderr is not a terminal");
     r.add_flag("--no-progress", o.progressOff, "Never show progress");
 }
@@ -133,6 +134,15 @@ std::int64_t parseCount(const std::string& text, const char* option, std::int64_
 void validateRenderOptions(RenderOptions& o)
 {
     parseCheckpointEvery(o.checkpointEvery, &o);
+    validateSensorOptions(o.sensors, o.skySun);
+    if (o.sensors.noImage) {
+        // Nothing of the image's: a render for its sensors alone.
+        const char* imageOption = o.width ? "--width" : o.height ? "--height" : o.roi ? "--roi" : !o.regions.empty() ? "--region"
+                                  : o.referencePath ? "--reference" : o.exposure ? "--exposure" : !o.camera.empty() ? "--camera"
+                                  : o.cameraSpp ? "--camera-spp" : nullptr;
+        if (imageOption)
+            throw Error(cat(imageOption, " is about the image, and --no-image renders none"));
+    }
     if (o.pathsText)
         o.paths = parseCount(*o.pathsText, "--paths", kMaxRenderPaths, "2^56 (72057594037927936, the most a render can number)");
     if (o.paths && o.timeSeconds)

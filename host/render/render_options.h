@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "emission/emission_options.h"
+#include "sensor/sensor_options.h"
 #include "sky/sky_sun_options.h"
 
 namespace CLI {
@@ -59,6 +60,7 @@ struct RenderOptions {
     int checkpointBatches = 0;                     //     (batches: 0 when given in time)
     std::optional<std::string> resumePath;         // --resume
     SkySunOptions skySun;                  // --sky, --sun, ... (sky/sky_sun_options.h)
+    SensorOptions sensors;                 // --sensor-points, --work-plane, --daylight-factor, ...
 
     std::uint32_t seedValue() const { return static_cast<std::uint32_t>(seed.value_or(1)); }
     int maxBouncesValue() const { return maxBounces.value_or(1024); }

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "emission/emission_sphere.h"
 #include "emission/light_levels.h"
@@ -15,6 +16,7 @@
 #include "render/checkpoint.h"
 #include "render/device_scene.h"
 #include "render/film.h"
+#include "sensor/device_sensors.h"
 #include "shared/fen_rng.h"
 #include "trace/device_bvh.h"
 #include "util/error.h"
@@ -54,12 +56,14 @@ struct Renderer::Impl {
     SkyTables skyTables;
     DeviceSky sky;
     Film film;
+    DeviceSensors sensors;
     std::unique_ptr<EmissionStrategy> strategy;
     std::uint32_t pool;
     std::unique_ptr<PathLoop> loop;
     CameraSpec camera;
     std::uint64_t sceneHash_ = 0;  // only when checkpointing or resuming
     bool steersByPixel = false;    // the strategy wants the image so far (imageEstimate)
+    std::optional<SensorStatistics> sensorStats;  // the counted batches' sensor cells, with sensors
 
     // Progress reporting across batches.
     std::uint64_t pathsDone = 0, pathsTotal = 0, raysDone = 0;
@@ -72,14 +76,20 @@ struct Renderer::Impl {
           scene(c, s, st.bvhWidth > 0 ? st.bvhWidth : defaultBvhWidth(c.info().isGpu())),
           skyTables(makeSkyTables(g)), sky(c, skyTables),
           film(c, w, h, referenceLuminance(s, skyTables)),
+          // illuminance ~ pi x luminance: the pixels' fixed-point range serves the cells too
+          sensors(st.sensors && !st.sensors->empty() ? DeviceSensors(c, *st.sensors, static_cast<float>(film.fixedScale() / M_PI))
+                                                      : DeviceSensors(c)),
           strategy(makeEmissionStrategy(st.emission, {c, s, skyTables, g, sky, scene.bvh().width(), film.fixedScale(), film.width(), film.height()})),
           pool(st.poolSize > 0 ? st.poolSize : defaultPoolSlots(c.info()))
     {
         camera = cam;
         if (!st.checkpointPath.empty() || !st.resumePath.empty())
             sceneHash_ = sceneHash(s);
-        loop = std::make_unique<PathLoop>(c, scene, *strategy, film, sky, makeDevCamera(cam, w, h), pool,
-                                                st.kernels ? *st.kernels : defaultKernelMode(c.info().isGpu()));
+        dev::DevCamera devCam = makeDevCamera(cam, w, h);
+        if (st.noImage)
+            devCam.width = devCam.height = 0;  // nothing projects, the camera pass sees nothing
+        loop = std::make_unique<PathLoop>(c, scene, *strategy, film, sensors, sky, devCam, pool,
+                                          st.kernels ? *st.kernels : defaultKernelMode(c.info().isGpu()));
         dev::RenderParams p{};
         glm::dvec3 centre;
         double radius;
@@ -166,6 +176,7 @@ struct Renderer::Impl {
 
     struct BatchImage {
         std::vector<double> rgb;  // per pixel
+        std::vector<double> sensorLux;  // per sensor cell
         std::uint64_t paths = 0;  // traced: the batch's count, or fewer when a stop cut it short
     };
 
@@ -177,6 +188,7 @@ struct Renderer::Impl {
                         const BatchStatistics* stats)
     {
         film.clear();
+        sensors.clear();
         loop->beginBatch();
         const auto onIteration = [this](std::uint64_t paths, std::uint64_t rays) {
             pathsDone += paths;
@@ -202,7 +214,7 @@ struct Renderer::Impl {
         const std::uint64_t shadowBefore = counts.shadowRays;
         loop->endBatch(batch, counts);
         raysDone += counts.shadowRays - shadowBefore;
-        return {film.read(done), done};
+        return {film.read(done), sensors.read(done), done};
     }
 
     // The strategy's state, as a checkpoint holds it (between batches).
@@ -211,6 +223,29 @@ struct Renderer::Impl {
         StateWriter w;
         strategy->saveState(w);
         return w.bytes();
+    }
+
+    // The sensors' cells, as a hash of their positions, normals and sides (0: none).
+    std::string sensorFingerprint() const
+    {
+        std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the cells' doubles
+        const auto mix = [&](double v) {
+            unsigned char b[8];
+            std::memcpy(b, &v, 8);
+            for (unsigned char c : b)
+                h = (h ^ c) * 1099511628211ull;
+        };
+        if (settings.sensors)
+            for (const SensorCell& c : settings.sensors->cells) {
+                for (int k = 0; k < 3; ++k) {
+                    mix(c.position[k]);
+                    mix(c.normal[k]);
+                }
+                mix(c.side_m);
+            }
+        char hash[17];
+        std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(h));
+        return cat(settings.sensors ? settings.sensors->cells.size() : 0, ":", hash);
     }
 
     // What must be equal for a checkpoint to continue this render (render/checkpoint.h).
@@ -240,6 +275,8 @@ struct Renderer::Impl {
                 {"split_max", settings.splitMax},
                 {"split_weight", settings.splitWeight},
                 {"rois", rois},
+                {"sensors", sensorFingerprint()},
+                {"no_image", settings.noImage},
                 {"method", methodName(e.method)},
                 {"portals", e.portals},
                 // the strategy's own settings (strategy_registry.h), after "method" so that a
@@ -259,6 +296,8 @@ struct Renderer::Impl {
         saved.counts = r.counts;
         writeLoopState(w, saved);
         stats.save(w);
+        if (sensorStats)
+            sensorStats->save(w);
         if (strategyBytes)
             w.append(*strategyBytes);
         else
@@ -277,6 +316,11 @@ struct Renderer::Impl {
         stats.load(in);
         if (stats.batches() != l.done)
             in.fail("film.batches", "does not match loop.done");
+        if (sensorStats) {
+            sensorStats->load(in);
+            if (sensorStats->batches() != l.done)
+                in.fail("sensors.batches", "does not match loop.done");
+        }
         strategy->loadState(in);
         estimateImage(&stats, 0);
         const std::string carry = in.str("carry", 1u << 30);
@@ -301,6 +345,8 @@ struct Renderer::Impl {
         r.method = strategy->method();
         const int batches = std::max(2, settings.batches);
         BatchStatistics stats(film.width(), film.height(), settings.rois);
+        if (sensors.any())
+            sensorStats.emplace(sensors.cells());
         LoopState l;
 
         start = lastProgress = Clock::now();
@@ -395,6 +441,8 @@ struct Renderer::Impl {
                     break;
                 }
                 stats.add(img.rgb, strategy->batchWeight());
+                if (sensorStats)
+                    sensorStats->add(img.sensorLux, strategy->batchWeight());
                 l.base += img.paths;
                 l.perBatch = img.paths;
                 ++l.done;
@@ -402,6 +450,8 @@ struct Renderer::Impl {
                 break;
             }
             stats.add(img.rgb, strategy->batchWeight());
+            if (sensorStats)
+                sensorStats->add(img.sensorLux, strategy->batchWeight());
             estimateImage(&stats, 0);
             l.base += l.perBatch;
             ++l.done;
@@ -430,6 +480,7 @@ struct Renderer::Impl {
         r.stdErrLuminance = stats.stdErrLuminance();
         r.roiBatchMeans = stats.roiBatchMeans();
         r.batchWeights = stats.weights();
+        r.sensors = sensorStats;
         r.emission = strategy->report();
         r.emissionWarnings = strategy->warnings();
         r.emittedFluxPerPath = strategy->emittedFluxPerPath();

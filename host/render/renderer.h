@@ -28,6 +28,8 @@
 #include "io/image.h"
 #include "render/image_stats.h"
 #include "render/path_loop.h"
+#include "sensor/sensor_set.h"
+#include "sensor/sensor_stats.h"
 #include "scene/scene.h"
 #include "sky/goniogram.h"
 
@@ -65,6 +67,12 @@ struct RenderSettings {
     double splitWeight = 1.0;
     bool progress = false;       // progress line on stderr
     std::vector<Roi> rois;       // regions whose mean luminance is tracked batch by batch
+    // Sensor grids (sensor/sensor_set.h; DESIGN.md §8): every path segment adds its flux to the
+    // cells it crosses. Null or empty: none.
+    const SensorSet* sensors = nullptr;
+    // No image: the camera sees nothing and connects to nothing (a render for its sensors alone);
+    // the film is one black pixel.
+    bool noImage = false;
     std::function<void(const BatchProgress&)> onBatch;  // optional
     // Set (by a signal handler) to stop: the batch in flight finishes and the render ends with the
     // batches done -- at least one, so the image is valid.
@@ -106,6 +114,7 @@ struct RenderResult {
     // not).
     std::vector<std::vector<double>> roiBatchMeans;
     std::vector<double> batchWeights;  // film.h BatchStatistics: 1 each unless the strategy learns
+    std::optional<SensorStatistics> sensors;  // with sensors: each cell's illuminance over the batches
     double roiMean(std::size_t k) const;
     double roiMeanStdErr(std::size_t k) const;
     // The flux the --max-bounces cap removed over the flux emitted: the relative bias of the cap

@@ -5,6 +5,7 @@
 #include "scene/gltf_load.h"
 
 #include <algorithm>
+#include <optional>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -771,24 +772,7 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
         if (placesSomething && !isFiniteMatrix(xf))
             throw Error(cat(where, ": its world transform is not finite (the transforms of it and its "
                                    "parents overflow)"));
-        if (n.mesh >= 0) {
-            if (n.mesh >= static_cast<int>(model.meshes.size()))
-                throw Error(cat(where, " names mesh ", n.mesh, ", which does not exist"));
-            const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(n.mesh)];
-            for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi)
-                addPrimitive(model, mesh.primitives[pi], xf, node,
-                             cat(where, ", mesh ", n.mesh, ", primitive ", pi), scene);
-        }
-        if (n.camera >= 0) {
-            scene.cameras.push_back(readCamera(model, node, xf, where));
-            // Light paths reach a view in proportion to the surface it sees: a narrow one gets few.
-            const double yfovDeg = scene.cameras.back().yfovRad * 180.0 / M_PI;
-            if (yfovDeg < 1.0)
-                scene.warnings.push_back(cat(where, ": camera ", n.camera, " sees only ", yfovDeg,
-                                             " degrees; light paths reach so narrow a view rarely, and a short "
-                                             "render may come out black or noisy"));
-        }
-
+        std::optional<double> sensorCell;  // extras.sensor: the node measures light
         const nlohmann::json& rawNode = element(member(doc, "nodes"), static_cast<std::size_t>(node));
         const nlohmann::json& extras = member(rawNode, "extras");
         if (!extras.is_null()) {
@@ -805,7 +789,64 @@ Scene loadGltfFromMemory(const unsigned char* data, std::size_t size, const std:
                     throw Error(cat(r.keyPath("portal"), ": must be true, false (or 1, 0) or \"hull\", not ",
                                     describe(p)));
             }
+            if (r.has("sensor")) {
+                // true (cells of 0.1 m), or {"cell_m": side}: the node's triangles measure light
+                // and block none (host/sensor/sensor_set.h).
+                const nlohmann::json& v = r.raw("sensor");
+                if (v.is_boolean() || (v.is_number_integer() && (v == 0 || v == 1))) {
+                    if (v.is_boolean() ? v.get<bool>() : v == 1)
+                        sensorCell = 0.1;
+                } else if (v.is_object()) {
+                    JsonReader sr(v, r.keyPath("sensor"));
+                    sensorCell = sr.number("cell_m", 0.1);
+                    if (!(*sensorCell > 0.0) || !std::isfinite(*sensorCell) || *sensorCell > 1e4)
+                        throw Error(cat(sr.keyPath("cell_m"), ": ", *sensorCell,
+                                        " must be a cell side in metres, more than 0 and at most 10 km"));
+                    sr.rejectUnknownKeys();
+                } else {
+                    throw Error(cat(r.keyPath("sensor"), ": must be true, false or {\"cell_m\": side in metres}, not ",
+                                    describe(v)));
+                }
+                if (sensorCell && scene.nodePortal[static_cast<std::size_t>(node)] != PortalMark::None)
+                    throw Error(cat(r.keyPath("sensor"), ": the node is also a portal; a sensor blocks nothing, "
+                                                       "so it cannot be a window"));
+            }
             r.rejectUnknownKeys();
+        }
+
+        if (n.mesh >= 0) {
+            if (n.mesh >= static_cast<int>(model.meshes.size()))
+                throw Error(cat(where, " names mesh ", n.mesh, ", which does not exist"));
+            const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(n.mesh)];
+            const std::size_t first = scene.triangles.size();
+            for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi)
+                addPrimitive(model, mesh.primitives[pi], xf, node,
+                             cat(where, ", mesh ", n.mesh, ", primitive ", pi), scene);
+            if (sensorCell) {
+                // A sensor's triangles leave the geometry: they measure, they block nothing.
+                SensorMesh sm;
+                sm.name = n.name.empty() ? cat("node ", node) : n.name;
+                sm.source = where;
+                sm.cell_m = *sensorCell;
+                sm.triangles.assign(scene.triangles.begin() + static_cast<std::ptrdiff_t>(first), scene.triangles.end());
+                scene.triangles.resize(first);
+                scene.triangleNode.resize(first);
+                scene.triangleMaterial.resize(first);
+                if (scene.triangleUv.size() > first)
+                    scene.triangleUv.resize(first);
+                scene.sensorMeshes.push_back(std::move(sm));
+            }
+        } else if (sensorCell) {
+            throw Error(cat(where, ".extras.sensor: the node has no mesh to measure on"));
+        }
+        if (n.camera >= 0) {
+            scene.cameras.push_back(readCamera(model, node, xf, where));
+            // Light paths reach a view in proportion to the surface it sees: a narrow one gets few.
+            const double yfovDeg = scene.cameras.back().yfovRad * 180.0 / M_PI;
+            if (yfovDeg < 1.0)
+                scene.warnings.push_back(cat(where, ": camera ", n.camera, " sees only ", yfovDeg,
+                                             " degrees; light paths reach so narrow a view rarely, and a short "
+                                             "render may come out black or noisy"));
         }
 
         const nlohmann::json& light = member(member(rawNode, "extensions"), "KHR_lights_punctual");

@@ -69,6 +69,15 @@ struct CameraSpec {
 
 enum class PortalMark { None, Panes, Hull };  // node.extras.portal: absent, true, "hull"
 
+// A node marked `extras.sensor` (host/sensor/sensor_set.h): its triangles measure light and are
+// not part of the scene's geometry (a sensor blocks nothing).
+struct SensorMesh {
+    std::string name;     // the node's name, or "node N"
+    std::string source;   // "room.gltf: nodes[3] 'desk'", for messages
+    double cell_m = 0.1;  // the side of its cells
+    std::vector<Triangle> triangles;  // world space
+};  // node.extras.portal: absent, true, "hull"
+
 struct Scene {
     std::string source;                        // file path, or a name for procedural scenes
     std::vector<Triangle> triangles;           // world space, metres
@@ -85,6 +94,7 @@ struct Scene {
     Sun sun;
     SkySpec sky;
     std::vector<CameraSpec> cameras;           // in scene traversal order
+    std::vector<SensorMesh> sensorMeshes;      // nodes marked extras.sensor, in traversal order
     std::vector<std::string> warnings;         // ignored features worth telling the user
     std::vector<std::string> files;            // the files it was read from: the scene's, then its buffers' and images'
     Aabb bounds;

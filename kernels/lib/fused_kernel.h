@@ -11,12 +11,15 @@
  * depth, and every program is compiled without contraction (cl/kernel_source.cpp), so a path
  * computes the same numbers here as there; pixels and statistics are integer sums. Hence the
  * image is bit-identical to the wavefront's (tests/render/fused_test.cpp).
+ * Built with -DFEN_HAS_SENSORS, every segment adds its flux to the sensor cells it crosses
+ * (lib/sensor.h), as shade.cl does in the wavefront.
  * Counters: emitted paths, extension and shadow rays, added once per work-item at its end.
  */
 #ifndef FEN_FUSED_KERNEL_H
 #define FEN_FUSED_KERNEL_H
 
 #include "lib/connect_path.h"
+#include "lib/sensor.h"
 #include "lib/shade_path.h"
 #include "lib/surface_hit.h"
 
@@ -30,8 +33,13 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
                         volatile global ulong* cell_stats, global const float* stats_pixel_scale,
                         global const GuideParams* guide_params, global const uint* guide_tables,
                         volatile global ulong* guide_stats,
+                        global const DevSensorInfo* sensor_info, global const DevSensorPlane* sensor_planes,
+                        global const DevSensorCell* sensor_cells, global const uint* sensor_bucket_start,
+                        global const uint* sensor_bucket_cells, volatile global ulong* sensor_accum,
                         FEN_EMITTER_ARGS)
 {
+    const Sensors sensors = {sensor_info, sensor_planes, sensor_cells, sensor_bucket_start, sensor_bucket_cells,
+                             sensor_accum};
     const FEN_EMITTER_TYPE emitter = FEN_EMITTER_MAKE;
     const Guide guide = {guide_params, guide_tables};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
@@ -54,6 +62,11 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
             for (;;) {
                 ++extension;
                 const SurfaceHit h = closest_surface(nodes, packets, p.org.xyz, p.dir.xyz);
+#ifdef FEN_HAS_SENSORS
+                sensor_record(&sensors, p.org.xyz, p.dir.xyz,
+                              as_uint(h.normal.w) != FEN_INVALID_ID ? distance(h.pos.xyz, p.org.xyz) : INFINITY,
+                              p.beta, counters);
+#endif
                 if (as_uint(h.normal.w) == FEN_INVALID_ID) {
                     if (next_branch(params, &guide, &p, &split, &sm, cam, counters))
                         continue;

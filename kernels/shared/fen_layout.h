@@ -12,6 +12,7 @@
 #include "shared/fen_emission.h"
 #include "shared/fen_guide.h"
 #include "shared/fen_render.h"
+#include "shared/fen_sensor.h"
 
 #define FEN_SHARED_LAYOUT(X) \
     X(Ray, org_tmin)         \
@@ -48,6 +49,11 @@
     X(RenderParams, split_max) \
     X(RenderParams, pick_step) \
     X(SplitState, normal)    \
+    X(DevSensorPlane, normal) \
+    X(DevSensorPlane, bucket_first) \
+    X(DevSensorPlane, rows)  \
+    X(DevSensorCell, inv_area) \
+    X(DevSensorInfo, fixed_scale) \
     X(SplitState, depth)     \
     X(SplitState, path_hi)   \
     X(SourceParams, box_size) \

@@ -10,6 +10,7 @@
 
 #include "cl/launch.h"
 #include "scatter/first_bounce_guide.h"
+#include "sensor/device_sensors.h"
 #include "io/image.h"
 #include "render/camera_setup.h"
 #include "render/device_scene.h"
@@ -76,6 +77,7 @@ struct Stages {
         cl::Buffer stats = ctx.buffer(CL_MEM_READ_WRITE, statsZero.size() * 8, "cell stats", statsZero.data());
         cl::Buffer noScale = ctx.buffer(CL_MEM_READ_ONLY, 4, "no pixel scale");
         const FirstBounceGuide noGuide(ctx, GuideOptions{}, glm::dvec3(0.0), 1.0);  // off: the cosine
+        const DeviceSensors noSensors(ctx);
         const auto defs = ds.defines();
         auto connectDefs = defs;
         if (statsScale > 0.0f)
@@ -86,7 +88,9 @@ struct Stages {
         ocl::setKernelArgs(isect, paths, hits, n, ds.bvh().nodes(), ds.bvh().packets());
         ocl::setKernelArgs(shade, params, paths, splits, hits, ds.primMaterial(), ds.materials(), ds.primUv(),
                            ds.texels(), camBuf, conns,
-                           noGuide.params(), noGuide.tables(), counters);
+                           noGuide.params(), noGuide.tables(), noSensors.info(), noSensors.planes(),
+                           noSensors.cellTable(), noSensors.bucketStart(), noSensors.bucketCells(),
+                           noSensors.accumulators(), counters);
         ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.primMaterial(),
                            ds.materials(), accum, stats, noScale, noGuide.stats(), counters);
         ocl::launch(ctx, isect, "intersect_paths", n);

@@ -1,0 +1,58 @@
+// device_sensors.h — the sensors on the device (DESIGN.md §8): the plane and bucket tables that
+// lib/sensor.h searches, built from a SensorSet, and the cells' 128-bit fixed-point accumulators.
+//
+// Cells are grouped by plane (normal and offset equal to 1e-4); each plane's bucket grid has
+// buckets of the largest cell side there (doubled while the buckets outnumber four per cell, for
+// scattered points), and every cell is listed in each bucket its square overlaps. A render without
+// sensors binds an empty set (info.planes = 0), and its kernels are built without them.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cl/context.h"
+#include "sensor/sensor_set.h"
+#include "shared/fen_sensor.h"
+
+namespace fen {
+
+// The host-side tables, before upload (tested directly: tests/host/sensor_test.cpp).
+struct SensorTables {
+    dev::DevSensorInfo info{};
+    std::vector<dev::DevSensorPlane> planes;
+    std::vector<dev::DevSensorCell> cells;
+    std::vector<std::uint32_t> bucketStart, bucketCells;
+};
+SensorTables makeSensorTables(const SensorSet& set, float fixedScale);
+
+class DeviceSensors {
+public:
+    // No sensors.
+    explicit DeviceSensors(ocl::Context& ctx);
+    // `fixedScale`: accumulators hold round(lux x paths x fixedScale).
+    DeviceSensors(ocl::Context& ctx, const SensorSet& set, float fixedScale);
+
+    bool any() const { return cells_ > 0; }
+    std::size_t cells() const { return cells_; }
+    float fixedScale() const { return fixedScale_; }
+    // Kernel arguments, in this order (kernels/shade.cl, lib/fused_kernel.h).
+    const cl::Buffer& info() const { return info_; }
+    const cl::Buffer& planes() const { return planes_; }
+    const cl::Buffer& cellTable() const { return cellTable_; }
+    const cl::Buffer& bucketStart() const { return bucketStart_; }
+    const cl::Buffer& bucketCells() const { return bucketCells_; }
+    const cl::Buffer& accumulators() const { return accum_; }
+
+    void clear();
+    // Each cell's illuminance over `paths` paths (lux): accumulators / (scale x paths).
+    std::vector<double> read(std::uint64_t paths);
+
+private:
+    void upload(ocl::Context& ctx, const SensorTables& t);
+    ocl::Context& ctx_;
+    std::size_t cells_ = 0;
+    float fixedScale_ = 1.0f;
+    cl::Buffer info_, planes_, cellTable_, bucketStart_, bucketCells_, accum_;
+};
+
+}  // namespace fen

@@ -1,0 +1,69 @@
+/* sensor.h — a path segment's flux added to the sensor cells it crosses (DESIGN.md §8).
+ *
+ * A light tracer's paths are samples of the light's flux: a segment of weight beta (lm per path)
+ * that crosses a surface element of area A adds Y(beta) / A to that element's illuminance estimate
+ * (lux x paths; the host divides by the paths). Sensors block nothing: the segment goes on. A cell
+ * counts light arriving at the side its plane's normal faces (the segment travels against the
+ * normal), as an illuminance meter lying there would.
+ * Called for every segment of every path, from org towards dir (unit) up to t_max (the next
+ * surface, INFINITY for a miss), by the wavefront's shade.cl and by the fused kernel, so a cell's
+ * sum does not depend on the kernel form (integer sums: lib/accumulate.h). Segments of the portal
+ * complement's estimate-only paths (FEN_PART_ESTIMATE_ONLY) add nothing, as they add nothing to
+ * pixels. Cost: one plane test per sensor plane and segment; a crossing looks in one bucket.
+ * Overflows of the 128-bit range are counted (FEN_CTR_OVERFLOWS) and must stay zero.
+ */
+#ifndef FEN_SENSOR_LIB_H
+#define FEN_SENSOR_LIB_H
+
+#include "lib/accumulate.h"
+#include "shared/fen_sensor.h"
+
+typedef struct {
+    global const DevSensorInfo* info;
+    global const DevSensorPlane* planes;
+    global const DevSensorCell* cells;
+    global const uint* bucket_start;
+    global const uint* bucket_cells;
+    volatile global ulong* accum;  /* 2 words per cell */
+} Sensors;
+
+static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float t_max, float4 beta,
+                                 volatile global ulong* counters)
+{
+    const uint planes = s->info->planes;
+    if (planes == 0u || (as_uint(beta.w) & FEN_PART_ESTIMATE_ONLY))
+        return;
+    const float flux = rgb_luminance(beta.xyz);
+    if (!(flux > 0.0f))
+        return;
+    const float scale = s->info->fixed_scale;
+    for (uint k = 0; k < planes; ++k) {
+        const global DevSensorPlane* pl = s->planes + k;
+        const float3 n = pl->normal.xyz;
+        const float cos_n = dot(dir, n);
+        if (!(cos_n < 0.0f))
+            continue; /* parallel, or arriving at the back */
+        const float t = (pl->origin.w - dot(org, n)) / cos_n;
+        if (!(t > 0.0f && t < t_max))
+            continue;
+        const float3 x = org + t * dir - pl->origin.xyz;
+        const float u = dot(x, pl->u_axis.xyz), v = dot(x, pl->v_axis.xyz);
+        const float fu = u * pl->normal.w, fv = v * pl->normal.w;
+        if (!(fu >= 0.0f && fv >= 0.0f && fu < (float)pl->cols && fv < (float)pl->rows))
+            continue;
+        const uint b = pl->bucket_first + min((uint)fv, pl->rows - 1u) * pl->cols + min((uint)fu, pl->cols - 1u);
+        const uint end = s->bucket_start[b + 1];
+        for (uint i = s->bucket_start[b]; i < end; ++i) {
+            const uint c = s->bucket_cells[i];
+            const DevSensorCell cell = s->cells[c];
+            /* half-open squares: a point on a shared edge belongs to one cell */
+            const float du = u - cell.u, dv = v - cell.v;
+            if (du >= -cell.half_side && du < cell.half_side && dv >= -cell.half_side && dv < cell.half_side) {
+                if (!fixed_add128(s->accum + 2 * (ulong)c, flux * cell.inv_area * scale))
+                    counter_add(counters, FEN_CTR_OVERFLOWS, 1);
+            }
+        }
+    }
+}
+
+#endif /* FEN_SENSOR_LIB_H */
