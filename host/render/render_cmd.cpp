@@ -182,6 +182,7 @@ int runRender(const RenderOptions& opt)
         std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
     // The sensors: the scene's marked nodes, the work plane, the points files (DESIGN.md §8).
     const SensorSet sensors = buildSensors(opt.sensors, scene);
+    scene.bounds.grow(sensorBounds(sensors));  // light is emitted where every sensor sees it
     if (noImage && sensors.empty())
         throw Error(cat("--no-image renders sensors alone, and ", printable(scene.source),
                         " has none: give --sensor-points FILE or --work-plane NODE, or mark a node extras.sensor"));

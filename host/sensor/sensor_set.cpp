@@ -213,6 +213,20 @@ void addWorkPlane(SensorSet& set, const Scene& scene, const std::string& node, d
     addMeshSensor(set, "workplane", "work plane", source, floors, spacing_m);
 }
 
+Aabb sensorBounds(const SensorSet& set)
+{
+    Aabb b;
+    for (const SensorCell& c : set.cells) {
+        glm::dvec3 u, v;
+        sensorPlaneAxes(c.normal, &u, &v);
+        const double h = 0.5 * c.side_m;
+        for (const double su : {-h, h})
+            for (const double sv : {-h, h})
+                b.grow(glm::vec3(c.position + su * u + sv * v));
+    }
+    return b;
+}
+
 void addSceneSensors(SensorSet& set, const Scene& scene)
 {
     for (const SensorMesh& m : scene.sensorMeshes)

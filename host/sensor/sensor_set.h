@@ -59,6 +59,11 @@ void addMeshSensor(SensorSet& set, const std::string& name, const std::string& k
 // node, or it has no upward-facing triangle.
 void addWorkPlane(SensorSet& set, const Scene& scene, const std::string& node, double height_m, double spacing_m);
 
+// The box around every cell's square. Emission (the uniform box, the emission sphere) covers the
+// scene's bounds, and light must be emitted where a sensor can see it: the render grows the scene's
+// bounds by this.
+Aabb sensorBounds(const SensorSet& set);
+
 // The sensors the scene's nodes carry (Scene::sensorMeshes).
 void addSceneSensors(SensorSet& set, const Scene& scene);
 
