@@ -270,8 +270,9 @@ TEST(CliRender, ACheckpointResumesBitIdentically)
     std::uint64_t paths = 1u << 24;
     while (paths < 4.0 * pathsPerSecond)
         paths *= 2;
+    // with a work plane: its cells are part of the state a checkpoint keeps
     const std::string args = " --paths " + std::to_string(paths) +
-                             " --batches 256 --width 40 --seed 5 --no-progress";
+                             " --batches 256 --width 40 --seed 5 --no-progress --work-plane plate";
     ASSERT_EQ(run("render " + scene + " --out " + dir + "/whole.exr" + args).status, 0);
     const std::string cmd = std::string(FENESTRA_BIN) + " render " + scene + " --out " + dir + "/r.exr" + args +
                             " --checkpoint " + dir + "/c.ckpt 2>" + dir + "/err & pid=$!; sleep 1; kill -TERM $pid; "
@@ -281,6 +282,8 @@ TEST(CliRender, ACheckpointResumesBitIdentically)
     const CliRun r = run("render " + scene + " --out " + dir + "/r.exr" + args + " --resume " + dir + "/c.ckpt");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(slurp(dir + "/r.exr"), slurp(dir + "/whole.exr"));
+    EXPECT_EQ(slurp(dir + "/r.sensors.csv"), slurp(dir + "/whole.sensors.csv"));
+    EXPECT_FALSE(slurp(dir + "/r.sensors.csv").empty());
     const auto j = nlohmann::json::parse(slurp(dir + "/r.json"));
     EXPECT_GT(j["checkpoint"]["resumed_batches"].get<int>(), 0);
     EXPECT_EQ(j["progress"].size(), 256u);  // the records from before the stop came back
@@ -1019,6 +1022,120 @@ TEST(CliRender, AnEditedCheckpointIsRefusedByWhatItSays)
     expectError(run(resume + edited("film.sum", true, bitsOf(std::nan("")), "nan.ckpt")), 1, "film.sum");
     expectError(run(resume + edited("film.sum", true, bitsOf(-5.0), "negative.ckpt")), 1, "light is never negative");
     EXPECT_EQ(run(resume + edited("loop.per_batch", false, 10000, "same.ckpt")).status, 0);  // the edit machinery works
+}
+
+}  // namespace
+}  // namespace fen
+
+namespace fen {
+namespace {
+
+// The plate scene with a sensor node: a 1 x 1 m square 0.5 m above the plate, cells of 0.5 m.
+test::GltfWriter plateWithSensorNode()
+{
+    test::GltfWriter w = plateScene();
+    const int n = w.addMeshNode("desk", {{{-0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, -0.5f}},
+                                         {{-0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, -0.5f}, {-0.5f, 0.5f, -0.5f}}});
+    w.node(n)["extras"] = {{"sensor", {{"cell_m", 0.5}}}};
+    return w;
+}
+
+TEST(CliSensors, NodesWorkPlanesAndPointsWriteCsvAndJson)
+{
+    // A daylight-factor study with no image: the scene's sensor node, a work plane over the plate
+    // and a points file; every sensor unobstructed, so DF = 100 % within its noise (4 sigma).
+    const std::string dir = test::tempDir("cli-sensors");
+    const std::string scene = plateWithSensorNode().write(dir + "/plate.gltf");
+    {
+        std::ofstream pts(dir + "/grid.pts");
+        pts << "# two points facing up, one facing south\n0.25 1 0.25 0 1 0\n-0.25 1 0.25 0 2 0\n\n0 1 0 0 0 1\n";
+    }
+    const CliRun r = run("render " + scene + " --out " + dir + "/df --no-image --daylight-factor --work-plane plate "
+                         "--sensor-spacing 0.5 --sensor-points " + dir + "/grid.pts --sensor-size 0.5 --paths 2000000 "
+                         "--no-progress");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(slurp(dir + "/df.exr").empty()) << "--no-image writes no image";
+    EXPECT_TRUE(slurp(dir + "/df.png").empty());
+    const std::string csv = slurp(dir + "/df.sensors.csv");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')),
+              "sensor,cell,x_m,y_m,z_m,nx,ny,nz,area_m2,illuminance_lux,std_err_lux,daylight_factor_pct,"
+              "daylight_factor_std_err_pct");
+    // 4 cells on the desk, 16 on the work plane (2 x 2 m at 0.5 m), 3 points: in that order
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4 + 16 + 3);
+    EXPECT_NE(csv.find("\ngrid,0,0.25,1,0.25,0,1,0,0.25,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("\ngrid,2,0,1,0,0,0,1,0.25,"), std::string::npos) << csv;
+    const auto j = nlohmann::json::parse(slurp(dir + "/df.json"));
+    EXPECT_EQ(j["image"], false);
+    EXPECT_EQ(j["sky"]["cie_type"], 1);
+    EXPECT_TRUE(j["sun"].is_null());
+    for (const char* name : {"desk", "workplane"}) {
+        const auto& d = j["sensors"][name]["daylight_factor"];
+        const double df = d["mean_pct"], se = d["mean_pct_std_err"];
+        std::printf("[ sensors  ] %s: DF %.3f %% +- %.3f\n", name, df, se);
+        EXPECT_NEAR(df, 100.0, 4.0 * se) << name;
+        EXPECT_LT(se, 1.0) << name;
+        EXPECT_EQ(d["area_share_above"], 1.0) << name;
+    }
+    EXPECT_EQ(j["sensors"]["workplane"]["cells"], 16);
+    EXPECT_EQ(j["sensors"]["workplane"]["kind"], "work plane");
+    EXPECT_EQ(j["sensors"]["grid"]["cells"], 3);
+    EXPECT_EQ(j["outputs"]["sensors_csv"], dir + "/df.sensors.csv");
+    EXPECT_NE(r.out.find("sensor workplane: 16 cells"), std::string::npos) << r.out;
+}
+
+TEST(CliSensors, BadSensorsAreOneLineErrors)
+{
+    const std::string dir = test::tempDir("cli-sensors-bad");
+    const std::string scene = plateScene().write(dir + "/plate.gltf");
+    const std::string out = " --out " + dir + "/o.exr --paths 1000 --no-progress";
+    const auto withPoints = [&](const std::string& name, const std::string& text) {
+        std::ofstream(dir + "/" + name) << text;
+        return run("render " + scene + out + " --sensor-points " + dir + "/" + name);
+    };
+    expectError(withPoints("a.pts", "0 1 0 0 1 0\n0 1 x 0 1 0\n"), 1, "a.pts:2: 'x' is not a finite number");
+    expectError(withPoints("b.pts", "# ok\n\n0 1 0 0 1 0\n0 1 0 0 1\n"), 1, "b.pts:4: 5 numbers; expected six");
+    expectError(withPoints("c.pts", "0 1 0 0 0 0\n"), 1, "c.pts:1: the direction (dx dy dz) is zero");
+    expectError(withPoints("d.pts", "# nothing\n"), 1, "d.pts: --sensor-points: no points");
+    expectError(withPoints("e.pts", "0 1 0 0 1 0\n"), 1, "one point, or all at one place: give its cell's side");
+    expectError(run("render " + scene + out + " --sensor-points " + dir + "/none.pts"), 1, "none.pts");
+    expectError(run("render " + scene + out + " --work-plane floor"), 1,
+                "--work-plane floor: no node of that name in");
+    expectError(run("render " + scene + out + " --sensor-spacing 0.1"), 1, "--sensor-spacing needs --work-plane");
+    expectError(run("render " + scene + out + " --work-plane plate --sensor-spacing 0"), 1, "--sensor-spacing 0");
+    expectError(run("render " + scene + out + " --no-image"), 1, "--no-image renders sensors alone");
+    expectError(run("render " + scene + out + " --no-image --work-plane plate --width 40"), 1,
+                "--width is about the image");
+    expectError(run("render " + scene + out + " --daylight-factor --work-plane plate --sky uniform"), 1,
+                "--daylight-factor is defined under the CIE overcast sky");
+    expectError(run("render " + scene + out + " --daylight-factor --work-plane plate --sun 30,180"), 1,
+                "--daylight-factor is defined with no sun");
+    expectError(run("render " + scene + out + " --df-threshold 2 --work-plane plate"), 1,
+                "--df-threshold needs --daylight-factor");
+    // a work plane over a node with no floor: a vertical wall
+    {
+        test::GltfWriter w = plateScene();
+        w.addMeshNode("wall", {{{-1, 0, -1}, {1, 0, -1}, {1, 2, -1}}});
+        const std::string s2 = w.write(dir + "/wall.gltf");
+        expectError(run("render " + s2 + out + " --work-plane wall"), 1, "the work plane meets no floor");
+    }
+    // sensor nodes: no area, a bad value, a portal that is a sensor, cells larger than the node
+    {
+        test::GltfWriter w = plateScene();
+        const int n = w.addMeshNode("flat", {{{0, 1, 0}, {1, 1, 0}, {2, 1, 0}}});
+        w.node(n)["extras"] = {{"sensor", true}};
+        expectError(run("render " + w.write(dir + "/flat.gltf") + out), 1, "the sensor has no area");
+    }
+    {
+        test::GltfWriter w = plateWithSensorNode();
+        w.node(2)["extras"] = {{"sensor", {{"cell_m", -1}}}};
+        expectError(run("render " + w.write(dir + "/neg.gltf") + out), 1, "extras.sensor.cell_m: -1");
+        w.node(2)["extras"] = {{"sensor", "yes"}};
+        expectError(run("render " + w.write(dir + "/str.gltf") + out), 1, "extras.sensor: must be true, false or");
+        w.node(2)["extras"] = {{"sensor", true}, {"portal", true}};
+        expectError(run("render " + w.write(dir + "/portal.gltf") + out), 1, "the node is also a portal");
+        w.node(2)["extras"] = {{"sensor", {{"cell_m", 5}}}};
+        expectError(run("render " + w.write(dir + "/big.gltf") + out), 1, "no cell of 5 m has its centre");
+    }
 }
 
 }  // namespace
