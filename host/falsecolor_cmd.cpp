@@ -9,9 +9,12 @@
 // <sensor> every byte but A-Z a-z 0-9 . _ - becomes _. All are written as a set
 // (io/output_files.h): on failure none is.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -210,7 +213,8 @@ int runSensors(const FalseColorOptions& o)
         } catch (const Error& e) {
             throw Error(cat(printable(o.input), ": sensor '", printable(plane.sensor, 60), "': ", e.what()));
         }
-        summaries.push_back(cat(path, ": ", quantity, " of ", where, ", ", cells.size(), " cells, ", label));
+        summaries.push_back(
+            cat(path, ": ", quantity, " of ", where, ", ", cells.size(), cells.size() == 1 ? " cell, " : " cells, ", label));
     }
     writeAll(files, o);
     for (const auto& s : summaries)
