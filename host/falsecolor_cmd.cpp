@@ -49,10 +49,11 @@ std::string baseName(const std::string& path)
     return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// The scale: fitted to `values`, then the ends given on the command line. An end not given is
-// fitted to the data above (below) the given one; where none is, a linear top is the given
-// bottom plus a round span, a log end one decade from the given one. Without --steps, a log scale
-// of d whole decades has d x round(8 / d) steps (at least d), so that every decade is a label.
+// The scale: fitted to `values`, then the ends given on the command line. With only --min, a
+// linear top is fitted to the values above it (in round steps from it), a log top is the fitted
+// one, or a decade above --min where that is not above it; with only --max, the bottom is the
+// fitted one (a log one a decade below --max where that is not below it). Without --steps, a log
+// scale of d whole decades has d x round(8 / d) steps (at least d), so that every decade is a label.
 FalseColorScale chooseScale(const std::vector<double>& values, const FalseColorOptions& o, bool log,
                             const std::string& unit)
 {
