@@ -86,6 +86,11 @@ int main(int argc, char** argv)
     benchCmd->add_option("--render-method", bench.renderMethod, "Emission method of the render (default uniform)");
     benchCmd->add_option("--kernels", bench.kernels, "Render kernels: fused or wavefront (default: the device's)");
 
+    fen::FalseColorOptions falseColor;
+    auto* falseColorCmd = app.add_subcommand(
+        "falsecolor", "An EXR's luminance or a sensor file's planes in false colour, on a labelled scale (PNG)");
+    fen::addFalseColorOptions(*falseColorCmd, falseColor);
+
     fen::RenderOptions render;
     auto* renderCmd = app.add_subcommand("render", "Light-trace a glTF scene to EXR + PNG + JSON");
     fen::addRenderOptions(*renderCmd, render);
@@ -120,6 +125,8 @@ int main(int argc, char** argv)
             fen::validateRenderOptions(render);
             return fen::runRender(render);
         }
+        if (*falseColorCmd)
+            return fen::runFalseColor(falseColor);
         if (*benchCmd) {
             bench.widths = parseWidths(layouts);
             bench.embree = !noEmbree;
