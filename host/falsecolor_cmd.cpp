@@ -24,7 +24,7 @@
 #include "io/output_files.h"
 #include "io/path_checks.h"
 #include "io/sensor_csv.h"
-#include "io/sensor_planes.h"
+#include "io/sensor_pictures.h"
 #include "util/error.h"
 
 namespace fen {
@@ -114,29 +114,6 @@ void checkOptions(const FalseColorOptions& o, bool sensorFile)
         throw Error(cat("--quantity '", printable(*o.quantity, 40), "': must be illuminance or df"));
 }
 
-std::string uniformityLabel(double mean, double minimum, const std::string& unit)
-{
-    if (std::isnan(mean))
-        return "no data";
-    char ratio[32];
-    if (mean > 0.0)
-        std::snprintf(ratio, sizeof ratio, "%.2f", minimum / mean);
-    else
-        std::snprintf(ratio, sizeof ratio, "-");
-    return cat("mean ", compactNumber(mean), " ", unit, "  min/mean ", ratio);
-}
-
-std::string fileNamePart(const std::string& name)
-{
-    std::string out;
-    for (const char c : name.substr(0, 100)) {
-        const bool keep = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                          c == '.' || c == '_' || c == '-';
-        out += keep ? c : '_';
-    }
-    return out;
-}
-
 std::string scaleText(const FalseColorScale& s)
 {
     return cat(compactNumber(s.min), "..", compactNumber(s.max), " ", s.unit, s.log ? " (log)" : " (linear)");
@@ -179,43 +156,12 @@ int runSensors(const FalseColorOptions& o)
     for (const SensorRow& r : file.rows)
         values.push_back(valueOf(r));
     FalseColorScale scale = chooseScale(values, o, o.log, df ? "% DF" : "lux");
-    const std::string quantity = df ? "daylight factor" : "illuminance", unit = df ? "%" : "lux";
 
-    const std::string stem = o.out.substr(0, o.out.size() - 4), extension = o.out.substr(o.out.size() - 4);
     std::vector<std::pair<std::string, std::string>> files;
     std::vector<std::string> summaries;
-    std::map<std::string, std::string> sensorOfFile;
-    for (const SensorPlane& plane : sensorPlanes(file)) {
-        std::vector<PlanCell> cells;
-        double sum = 0.0, area = 0.0, minimum = INFINITY;
-        for (std::size_t k = 0; k < plane.rows.size(); ++k) {
-            const SensorRow& r = file.rows[plane.rows[k]];
-            const double v = valueOf(r);
-            cells.push_back({plane.u[k], plane.v[k], std::sqrt(r.area), v});
-            if (!std::isnan(v)) {
-                sum += v * r.area;
-                area += r.area;
-                minimum = std::min(minimum, v);
-            }
-        }
-        const double mean = area > 0.0 ? sum / area : NAN;
-        const std::string where = plane.count > 1 ? cat(plane.sensor, " (facing ", facing(plane), ")") : plane.sensor;
-        const std::string label = uniformityLabel(mean, minimum, unit);
-        scale.title = o.title ? *o.title : cat(quantity, ", ", where);
-        std::string path = o.out;
-        if (!files.empty())
-            path = cat(stem, "-", fileNamePart(plane.sensor), plane.count > 1 ? cat("-", plane.index) : "", extension);
-        const auto [it, fresh] = sensorOfFile.emplace(path, plane.sensor);
-        if (!fresh)
-            throw Error(cat("sensors '", printable(it->second, 60), "' and '", printable(plane.sensor, 60),
-                            "' would both be written to ", printable(path), "; rename one in ", printable(o.input)));
-        try {
-            files.emplace_back(path, falseColorPlanPng(cells, scale, label));
-        } catch (const Error& e) {
-            throw Error(cat(printable(o.input), ": sensor '", printable(plane.sensor, 60), "': ", e.what()));
-        }
-        summaries.push_back(
-            cat(path, ": ", quantity, " of ", where, ", ", cells.size(), cells.size() == 1 ? " cell, " : " cells, ", label));
+    for (SensorPicture& p : sensorPictures(file, df, scale, o.out, o.title)) {
+        files.emplace_back(p.path, std::move(p.png));
+        summaries.push_back(p.summary);
     }
     writeAll(files, o);
     for (const auto& s : summaries)

@@ -109,8 +109,11 @@ SensorFile readSensorCsv(const std::string& path)
     buffer << in.rdbuf();
     if (in.bad())
         throw Error(cat(printable(path), ": cannot read the sensor file"));
-    const std::string text = buffer.str();
+    return parseSensorCsv(buffer.str(), path);
+}
 
+SensorFile parseSensorCsv(const std::string& text, const std::string& path)
+{
     SensorFile file;
     file.path = path;
     std::size_t columns = 0;

@@ -31,6 +31,9 @@
 #include "render/path_loop.h"
 #include "render/renderer.h"
 #include "scene/gltf_load.h"
+#include "io/false_color.h"
+#include "io/sensor_csv.h"
+#include "io/sensor_pictures.h"
 #include "sensor/sensor_options.h"
 #include "sensor/sensor_report.h"
 #include "sky/sky_spec.h"
@@ -186,10 +189,16 @@ int runRender(const RenderOptions& opt)
     if (noImage && sensors.empty())
         throw Error(cat("--no-image renders sensors alone, and ", printable(scene.source),
                         " has none: give --sensor-points FILE or --work-plane NODE, or mark a node extras.sensor"));
-    // One picture per sensor: PATH.sensors.png for the first, PATH.sensors-2.png, ... after it.
+    // A false-colour plan per sensor plane (io/sensor_pictures.h): PATH.sensors.png for the first,
+    // PATH.sensors-NAME.png for the others; named now, from the cells alone, so that the set of
+    // outputs is claimed before rendering.
+    const std::string sensorPngPath = withExtension(opt.outPath, ".sensors.png");
     std::vector<std::string> sensorPngPaths;
-    for (std::size_t k = 0; k < sensors.sensors.size(); ++k)
-        sensorPngPaths.push_back(withExtension(opt.outPath, k == 0 ? std::string(".sensors.png") : cat(".sensors-", k + 1, ".png")));
+    if (!sensors.empty()) {
+        const SensorStatistics zero(sensors.cells.size());
+        sensorPngPaths = sensorPicturePaths(parseSensorCsv(sensorCsv(sensors, zero, std::nullopt), sensorCsvPath),
+                                            sensorPngPath);
+    }
     for (const std::string& p : sensorPngPaths)
         checkOutputPath(p, "--out");
     // One render at a time writes this set; what a killed one left is finished or removed first.
@@ -327,8 +336,26 @@ int runRender(const RenderOptions& opt)
         for (double v : r.sensors->mean())
             if (!std::isfinite(v))
                 throw Error("internal error: a sensor cell holds a non-finite value");
-        outputs.add(sensorCsvPath, sensorCsv(sensors, *r.sensors, df));
+        const std::string csv = sensorCsv(sensors, *r.sensors, df);
+        outputs.add(sensorCsvPath, csv);
         sensorJson = sensorSummary(sensors, *r.sensors, df);
+        // the plans: the daylight factor in a DF study, else the illuminance, on one linear scale
+        const SensorFile file = parseSensorCsv(csv, sensorCsvPath);
+        std::vector<double> values;
+        for (const SensorRow& row : file.rows)
+            values.push_back(df ? row.daylightFactor : row.illuminance);
+        for (SensorPicture& pic : sensorPictures(file, df.has_value(), autoScale(values, false, df ? "% DF" : "lux"),
+                                                 sensorPngPath))
+            outputs.add(pic.path, std::move(pic.png));
+    }
+    if (opt.sensors.falseColor) {
+        // the image's luminance in false colour, on a log scale of whole decades
+        std::vector<double> y(r.image.pixels());
+        for (std::size_t i = 0; i < y.size(); ++i)
+            y[i] = r.image.luminance(i);
+        FalseColorScale scale = autoScale(y, true, "cd/m²");
+        scale.title = "luminance";
+        outputs.add(falsePath, falseColorImagePng(y, width, height, scale));
     }
     const double totalSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -426,8 +453,12 @@ int runRender(const RenderOptions& opt)
         j["outputs"]["png"] = pngPath;
         j["outputs"]["noise_exr"] = noisePath;
     }
-    if (r.sensors)
+    if (r.sensors) {
         j["outputs"]["sensors_csv"] = sensorCsvPath;
+        j["outputs"]["sensors_png"] = sensorPngPaths;
+    }
+    if (opt.sensors.falseColor)
+        j["outputs"]["falsecolor_png"] = falsePath;
     if (reference)
         j["outputs"]["error_png"] = errorPath;
     // Names are bytes: what is not UTF-8 is written as \xNN (util/utf8.h), so this cannot fail now.
