@@ -45,8 +45,8 @@ std::uint32_t defaultPoolSlots(const ocl::DeviceInfo& device)
 }
 
 PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy,
-                   Film& film, const DeviceSensors& sensors, const DeviceSky& sky, const dev::DevCamera& camera,
-                   std::uint32_t pool,
+                   Film& film, const DeviceSensors& sensors, bool sensorsSteer, const DeviceSky& sky,
+                   const dev::DevCamera& camera, std::uint32_t pool,
                    KernelMode mode)
     : ctx_(ctx), mode_(mode), strategy_(strategy), film_(film), pool_(pool)
 {
@@ -65,6 +65,10 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     auto shadeDefs = defs;
     if (sensors.any())
         shadeDefs.push_back("FEN_HAS_SENSORS=1");
+    // With no image to learn from, a learning strategy learns from the sensors (lib/sensor.h).
+    const bool sensorStats = sensors.any() && sensorsSteer && ek.gatherStats;
+    if (sensorStats)
+        shadeDefs.push_back("FEN_SENSOR_STATS=1");
     auto connectDefs = defs;
     if (ek.gatherStats)
         connectDefs.push_back("FEN_EMISSION_STATS=1");
@@ -78,6 +82,8 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
         fusedDefs.push_back("FEN_FUSED=1");
         if (sensors.any())
             fusedDefs.push_back("FEN_HAS_SENSORS=1");
+        if (sensorStats)
+            fusedDefs.push_back("FEN_SENSOR_STATS=1");
         fused_ = cl::Kernel(ctx.program(ek.emitProgram, fusedDefs), "trace_fused");
         // Enough work-items to keep every compute unit busy while the last chunks drain.
         fusedItems_ = std::size_t{std::max<cl_uint>(1, ctx.info().computeUnits)} * 16;
@@ -112,7 +118,7 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
                        scene.primUv(), scene.texels(), cameraBuf_, connections_, guide->params(), guide->tables(),
                        sensors.info(), sensors.planes(), sensors.cellTable(), sensors.bucketStart(),
-                       sensors.bucketCells(), sensors.accumulators(), counters_);
+                       sensors.bucketCells(), sensors.accumulators(), *ek.cellStats, counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), film.accumulators(), *ek.cellStats, *pixelScale, guide->stats(),
                        counters_);

@@ -54,9 +54,9 @@ struct BatchCounts {
 class PathLoop {
 public:
     // `sensors`: the cells every segment adds its flux to (an empty set: the kernels are built
-    // without them).
+    // without them); `sensorsSteer`: a learning strategy learns from them (a render with no image).
     PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy& strategy, Film& film,
-             const DeviceSensors& sensors, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
+             const DeviceSensors& sensors, bool sensorsSteer, const DeviceSky& sky, const dev::DevCamera& camera, std::uint32_t pool,
              KernelMode mode = KernelMode::Wavefront);
     KernelMode mode() const { return mode_; }
 

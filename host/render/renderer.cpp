@@ -88,7 +88,7 @@ struct Renderer::Impl {
         dev::DevCamera devCam = makeDevCamera(cam, w, h);
         if (st.noImage)
             devCam.width = devCam.height = 0;  // nothing projects, the camera pass sees nothing
-        loop = std::make_unique<PathLoop>(c, scene, *strategy, film, sensors, sky, devCam, pool,
+        loop = std::make_unique<PathLoop>(c, scene, *strategy, film, sensors, st.noImage, sky, devCam, pool,
                                           st.kernels ? *st.kernels : defaultKernelMode(c.info().isGpu()));
         dev::RenderParams p{};
         glm::dvec3 centre;

@@ -11,11 +11,17 @@
  * complement's estimate-only paths (FEN_PART_ESTIMATE_ONLY) add nothing, as they add nothing to
  * pixels. Cost: one plane test per sensor plane and segment; a crossing looks in one bucket.
  * Overflows of the 128-bit range are counted (FEN_CTR_OVERFLOWS) and must stay zero.
+ * Built with -DFEN_SENSOR_STATS (a learning strategy in a render with no image), each crossing's
+ * illuminance over pi -- a luminance, the unit the pixels' statistics are kept in -- also goes to
+ * the emission cell the path started in (lib/accumulate.h cell_stats_add), so that the strategy
+ * learns where the light the sensors see comes from: the absolute target, the sum of the cells'
+ * variances, which is what a grid's RMS error measures.
  */
 #ifndef FEN_SENSOR_LIB_H
 #define FEN_SENSOR_LIB_H
 
 #include "lib/accumulate.h"
+#include "lib/sampling.h"
 #include "shared/fen_sensor.h"
 
 typedef struct {
@@ -25,6 +31,8 @@ typedef struct {
     global const uint* bucket_start;
     global const uint* bucket_cells;
     volatile global ulong* accum;  /* 2 words per cell */
+    volatile global ulong* cell_stats;  /* the strategy's statistics (FEN_SENSOR_STATS only) */
+    float stats_fixed_scale, stats_scale;
 } Sensors;
 
 static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float t_max, float4 beta,
@@ -61,6 +69,11 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
             if (du >= -cell.half_side && du < cell.half_side && dv >= -cell.half_side && dv < cell.half_side) {
                 if (!fixed_add128(s->accum + 2 * (ulong)c, flux * cell.inv_area * scale))
                     counter_add(counters, FEN_CTR_OVERFLOWS, 1);
+#ifdef FEN_SENSOR_STATS
+                const float l = flux * cell.inv_area * (1.0f / FEN_PI);
+                cell_stats_add(s->cell_stats, as_uint(beta.w) & ~FEN_PART_ESTIMATE_ONLY, (float3)(l),
+                               s->stats_fixed_scale, s->stats_scale, counters);
+#endif
             }
         }
     }
