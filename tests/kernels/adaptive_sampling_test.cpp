@@ -138,6 +138,48 @@ TEST(AdaptiveSampling, WeightsCarryTheExactDensityOverUniform)
     expectMeanWeightIsTheFlux(b, "uniform base, base grid");
 }
 
+TEST(AdaptiveSampling, TheDisksBasisIsOrthonormalForEveryDirectionOfTravel)
+{
+    // The ground's light travels upwards, where Duff's frame (continuous for the sky's downward
+    // light) divides by 1 - n.y: straight up it is 0/0, just off it digits are lost. The mirrored
+    // frame keeps (t1, t2, n) orthonormal to float precision in every direction, and downward
+    // directions keep the frame they had.
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    std::vector<cl_float4> dirs;
+    const auto add = [&](glm::dvec3 d) {
+        d = glm::normalize(d);
+        dirs.push_back({{float(d.x), float(d.y), float(d.z), 0.0f}});
+    };
+    for (double y : {1.0, -1.0})
+        add({0, y, 0});
+    for (double eps : {1e-7, 1e-5, 1e-3, 0.1})
+        for (double y : {1.0, -1.0}) {
+            add({eps, y, 0});
+            add({0, y, -eps});
+            add({-eps, y, eps});
+        }
+    for (int k = 0; k < 1000; ++k)  // a spiral over the sphere
+        add(skyDirection(std::acos(1.0 - 2.0 * (k + 0.5) / 1000), 2.39996323 * k));
+    const auto n = static_cast<std::uint32_t>(dirs.size());
+    cl::Kernel k(ctx->program("test_adaptive_probes.cl", {"FEN_BVH_WIDTH=8"}), "travel_basis_probe");
+    cl::Buffer in = ctx->buffer(CL_MEM_READ_ONLY, n * 16, "directions", dirs.data());
+    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, 2 * n * 16, "bases");
+    ocl::setKernelArgs(k, in, out, n);
+    ocl::launch(*ctx, k, "travel_basis_probe", n);
+    std::vector<cl_float4> b(2 * n);
+    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, b.size() * 16, b.data());
+    const auto v = [](const cl_float4& f) { return glm::dvec3(f.s[0], f.s[1], f.s[2]); };
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const glm::dvec3 d = v(dirs[i]), t1 = v(b[2 * i]), t2 = v(b[2 * i + 1]);
+        SCOPED_TRACE(testing::Message() << "direction " << d.x << " " << d.y << " " << d.z);
+        EXPECT_NEAR(glm::length(t1), 1.0, 1e-5);
+        EXPECT_NEAR(glm::length(t2), 1.0, 1e-5);
+        EXPECT_NEAR(glm::dot(t1, t2), 0.0, 1e-5);
+        EXPECT_NEAR(glm::dot(t1, d), 0.0, 1e-5);
+        EXPECT_NEAR(glm::dot(t2, d), 0.0, 1e-5);
+    }
+}
+
 TEST(AdaptiveSampling, PortalCellsAndRejectedDiskLinesPartitionTheRays)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
