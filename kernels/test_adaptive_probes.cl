@@ -18,3 +18,15 @@ kernel void adaptive_emit_probe(global const RenderParams* params, global float4
     org[i] = kept ? (float4)(p.org.xyz, 1.0f) : (float4)(0.0f);
     dir[i] = kept ? p.dir : (float4)(0.0f);
 }
+
+/* basis[2 i], basis[2 i + 1] = travel_basis(n[i]) (lib/sampling.h): the adaptive disk's frame. */
+kernel void travel_basis_probe(global const float4* n, global float4* basis, uint count)
+{
+    const uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    float3 t1, t2;
+    travel_basis(n[i].xyz, &t1, &t2);
+    basis[2 * i] = (float4)(t1, 0.0f);
+    basis[2 * i + 1] = (float4)(t2, 0.0f);
+}

@@ -179,7 +179,7 @@ int runBench(const BenchOptions& opt)
             makeRenderable(renderScene);
         if (renderScene.cameras.empty())
             throw Error(cat(renderScene.source, ": --render needs a camera in the scene"));
-        renderSky = buildSky(renderScene.sky);
+        renderSky = buildSky(renderScene);
         RenderSettings rs;
         rs.paths = opt.renderPaths;
         rs.timeSeconds = opt.renderPaths > 0 ? 0.0 : opt.renderSeconds;

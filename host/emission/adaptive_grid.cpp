@@ -307,7 +307,7 @@ void AdaptiveGrid::load(StateReader& r, std::uint32_t regions)
         const std::uint64_t* id = ids.data() + kIds * i;
         const bool fits = id[0] <= 1 && id[1] < regions && id[2] <= learning_.maxDepth &&
                           id[3] >> id[2] == 0 && id[4] >> id[2] == 0 && id[5] <= learning_.maxSkyDepth &&
-                          id[6] >> id[5] == 0 && id[7] >> id[5] == 0;
+                          id[6] >> id[5] < learning_.skyRoots && id[7] >> id[5] == 0;
         if (!fits)
             r.fail("grid.cell_ids", cat("cell ", i, " lies outside the grid's limits"));
         c.sun = id[0] == 1;

@@ -59,7 +59,8 @@ struct GridCell {
     std::uint32_t region = 0;  // 0: the emission disk; 1 + g: portal plane g
     std::uint32_t depth = 0;   // origin box: [ix, ix + 1) x [iy, iy + 1) times 2^-depth
     std::uint32_t ix = 0, iy = 0;
-    std::uint32_t skyDepth = 0;  // direction box: [is, is + 1) x [it, it + 1) times 2^-skyDepth of (s, t)
+    std::uint32_t skyDepth = 0;  // direction box: [is, is + 1) x [it, it + 1) times 2^-skyDepth of (s, t);
+                                 // is >= 2^skyDepth: s in [1, 2), the ground's glow below the horizon
     std::uint32_t is = 0, it = 0;
     double base = 0.0;         // P_base(cell)
     struct Stats {
@@ -88,6 +89,7 @@ struct GridLearning {
     std::uint32_t maxCells = 1u << 15;
     double priorPaths = 32.0;         // the prior weighs as much as this many paths
     double minConnectionsToSplit = 8.0;
+    std::uint32_t skyRoots = 1;       // (s, t) unit squares of sky directions: 1 the sky's, 2 with the ground's
 };
 
 class AdaptiveGrid {

@@ -61,6 +61,9 @@ public:
         statsScale_ = std::ldexp(1.0, kStatsFixedPointBits) / (ref * ref);
         fixedScale_ = in.pixelFixedScale;
         hasSky_ = goniogram_ && goniogram_->integral() > 0.0;
+        // With the ground's glow the sky's directions are two unit squares of (s, t): s in [0, 1)
+        // above the horizon, [1, 2) below it, so no box straddles the horizon's step.
+        const std::uint32_t skyRoots = goniogram_ && goniogram_->hasGround() ? 2u : 1u;
         if (portalBase_)
             planes_ = makePortalPlanes(scene, settings.portals, in.bvhWidth);
         sunY_ = sunIlluminanceY_lux(scene);
@@ -83,7 +86,7 @@ public:
         }
         if (hasSky_)
             for (std::uint32_t it = 0; it < skySide; ++it)
-                for (std::uint32_t is = 0; is < skySide; ++is) {
+                for (std::uint32_t is = 0; is < skySide * skyRoots; ++is) {
                     GridCell c;
                     c.skyDepth = static_cast<std::uint32_t>(opt_.initialSkyDepth);
                     c.is = is;
@@ -148,6 +151,7 @@ public:
         learning.maxSkyDepth = static_cast<std::uint32_t>(opt_.maxSkyDepth);
         learning.maxCells = opt_.maxCells;
         learning.priorPaths = opt_.priorPaths;
+        learning.skyRoots = skyRoots;
         grid_ = std::make_unique<AdaptiveGrid>(std::move(cells), learning, [this](const GridCell& c, double share[4]) {
             double total = 0.0;
             for (std::uint32_t q = 0; q < 4; ++q) {

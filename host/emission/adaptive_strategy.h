@@ -4,7 +4,8 @@
 // portals (`portal`) with a share of the disk that keeps it unbiased when the marking is wrong.
 //
 // The cells (adaptive_grid.h; device half: kernels/lib/emit_adaptive.h): a box of directions -- the
-// sun's cone, or a box of (s, t) = (1 - cos(theta), phi / 2 pi) over the sky, where equal areas
+// sun's cone, or a box of (s, t) = (1 - cos(theta), phi / 2 pi) over the sky (s in [1, 2): the
+// ground's glow below the horizon, when the sky has one), where equal areas
 // are equal solid angles and a direction is drawn uniformly, its radiance g(v) evaluated -- times
 // a box of the origin's 2D parametrisation: its own emission disk (radius R, orthogonal to v,
 // covering the bounding sphere) through the concentric map, and with a portal base the frame of

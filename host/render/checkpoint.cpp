@@ -153,6 +153,8 @@ std::uint64_t sceneHash(const Scene& s)
     for (const auto& row : s.sky.table_cd_m2)
         for (double v : row)
             f.value(v);
+    if (s.sky.groundAlbedo != 0.0)  // only then: a scene without a ground hashes as before grounds existed
+        f.value(s.sky.groundAlbedo);
     return f.h;
 }
 

@@ -119,7 +119,10 @@ nlohmann::json skyJson(const SkySpec& spec, const std::optional<Goniogram>& sky)
     default:
         j = {{"type", "table"}};
     }
+    // The sky's own, over its table (a ground's rows face down: they add nothing here).
     j["horizontal_illuminance_lux"] = sky->illuminance(glm::dvec3(0.0, 1.0, 0.0));
+    j["ground_albedo"] = spec.groundAlbedo;
+    j["ground_luminance_cd_m2"] = sky->groundLuminance();
     return j;
 }
 
@@ -216,7 +219,7 @@ int runRender(const RenderOptions& opt)
     noCamera.yfovRad = 1.0;
     noCamera.nodeName = "none";
     const CameraSpec& camera = noImage ? noCamera : findCamera(scene, opt.camera);
-    const std::optional<Goniogram> sky = buildSky(scene.sky);
+    const std::optional<Goniogram> sky = buildSky(scene);
     int width = 1, height = 1;
     if (!noImage)
         resolveImageSize(camera, opt.width.value_or(0), opt.height.value_or(0), &width, &height);

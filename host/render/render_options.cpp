@@ -162,6 +162,7 @@ void validateRenderOptions(RenderOptions& o)
     requireRange(o.rouletteDepth, "--roulette-depth", 0, std::min(64, o.maxBouncesValue()),
                  " (at most 64, and at most --max-bounces)");
     requireRange(o.split, "--split", 1, 1024);
+    requireRange(o.skySun.groundAlbedo, "--ground-albedo", 0.0, 1.0, " (0: no ground glow)");
     if (o.splitWeight && !(std::isfinite(*o.splitWeight) && *o.splitWeight > 0.0))
         throw Error(cat("--split-weight ", *o.splitWeight, ": must be a positive, finite multiple of the mean weight"));
     requireName(o.checkpointPath, "--checkpoint");

@@ -443,6 +443,12 @@ SkySpec readSky(const nlohmann::json& sky, const std::string& where)
         throw Error(cat(r.keyPath("type"), ": unknown sky type '", printable(type),
                         "' (uniform, cie or table)"));
     }
+    // Any type: the ground's albedo, its glow below the horizon (sky/sky_spec.h); 0 is off.
+    if (r.has("ground_albedo")) {
+        spec.groundAlbedo = r.number("ground_albedo");
+        if (!(spec.groundAlbedo >= 0.0 && spec.groundAlbedo <= 1.0))
+            throw Error(cat(r.keyPath("ground_albedo"), ": ", spec.groundAlbedo, " is outside [0, 1] (0: no ground glow)"));
+    }
     r.rejectUnknownKeys();
     return spec;
 }

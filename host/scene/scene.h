@@ -55,6 +55,10 @@ struct SkySpec {
     double zenithLuminance_cd_m2 = 0.0, sunAltitudeDeg = 0.0, sunAzimuthDeg = 0.0;
     std::vector<double> zenithDeg, azimuthDeg;  // table
     std::vector<std::vector<double>> table_cd_m2;
+    // Any type: the ground's albedo (0..1; 0: off, a black lower hemisphere). Below the horizon
+    // the sky then glows uniformly at rho_g E_h / pi (Radiance gensky's ground), E_h the
+    // horizontal illuminance of this sky and the scene's sun (sky/sky_spec.h).
+    double groundAlbedo = 0.0;
 };
 
 // A glTF perspective camera placed by its node (looks along -z, +y up, +x right).

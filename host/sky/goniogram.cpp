@@ -169,6 +169,8 @@ double bilinear(const Patch& c, double s, double u)  // s, u in [0, 1]
 double clippedIntegral(const glm::dvec3& n, const Patch& c, int depth)
 {
     constexpr double kLeafRad = 5e-3;
+    if (!(c.t1 > c.t0))
+        return 0.0;  // the zero-width cell of a horizon step: nothing to integrate
     const double arcT = c.t1 - c.t0, arcP = std::sin(c.t1) * (c.p1 - c.p0);
     // Cheap bound first: w . n moves by at most the arc length, which is below arcT + arcP.
     double cornerMin = std::numeric_limits<double>::infinity(), cornerMax = -cornerMin;
@@ -233,22 +235,29 @@ std::size_t pieces(double h, double maxStep)
     return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(h / maxStep * (1 - 1e-12))));
 }
 
+// Nodes [from, to] of x strictly increasing from exactly `first` to exactly `last`.
+void checkAxis(const std::vector<double>& x, std::size_t from, std::size_t to, const char* name, double first,
+               const char* firstName, double last, const char* lastName, const std::string& where)
+{
+    for (std::size_t k = from; k <= to; ++k) {
+        if (!std::isfinite(x[k]))
+            throw Error(cat(where, ": goniogram ", name, " node ", k, " is not finite"));
+        if (k > from && !(x[k] > x[k - 1]))
+            throw Error(cat(where, ": goniogram ", name, " must be strictly increasing (node ", k,
+                            " = ", x[k], " after ", x[k - 1], ")"));
+    }
+    if (x[from] != first || x[to] != last)
+        throw Error(cat(where, ": goniogram ", name, from > 0 ? "'s ground rows" : "", " must start at exactly ",
+                        firstName, " and end at exactly ", lastName, " (got ", x[from], " .. ", x[to], ")"));
+}
+
 void checkAxis(const std::vector<double>& x, const char* name, double last, const char* lastName,
                const std::string& where)
 {
     if (x.size() < 2)
         throw Error(
             cat(where, ": goniogram ", name, " needs at least 2 nodes (got ", x.size(), ")"));
-    for (std::size_t k = 0; k < x.size(); ++k) {
-        if (!std::isfinite(x[k]))
-            throw Error(cat(where, ": goniogram ", name, " node ", k, " is not finite"));
-        if (k > 0 && !(x[k] > x[k - 1]))
-            throw Error(cat(where, ": goniogram ", name, " must be strictly increasing (node ", k,
-                            " = ", x[k], " after ", x[k - 1], ")"));
-    }
-    if (x.front() != 0.0 || x.back() != last)
-        throw Error(cat(where, ": goniogram ", name, " must start at exactly 0 and end at exactly ",
-                        lastName, " (got ", x.front(), " .. ", x.back(), ")"));
+    checkAxis(x, 0, x.size() - 1, name, 0.0, "0", last, lastName, where);
 }
 
 }  // namespace
@@ -275,7 +284,19 @@ Goniogram::Goniogram(std::vector<double> theta, std::vector<double> phi, std::ve
                      const std::string& where)
     : theta_(std::move(theta)), phi_(std::move(phi)), values_(std::move(values))
 {
-    checkAxis(theta_, "theta", kHalfPi, "pi/2", where);
+    // theta: the sky's nodes 0 .. pi/2; over the whole sphere, then pi/2 again .. pi (the ground's).
+    if (theta_.size() >= 2 && theta_.back() == M_PI) {
+        const auto h = std::find(theta_.begin(), theta_.end(), kHalfPi);
+        if (h == theta_.end() || h + 1 == theta_.end() || h[1] != kHalfPi)
+            throw Error(cat(where, ": goniogram theta ends at pi, so it must hold pi/2 twice: the sky's horizon row, ",
+                            "then the ground's"));
+        horizon_ = static_cast<std::size_t>(h - theta_.begin());
+        checkAxis(theta_, 0, horizon_, "theta", 0.0, "0", kHalfPi, "pi/2", where);
+        checkAxis(theta_, horizon_ + 1, theta_.size() - 1, "theta", kHalfPi, "pi/2", M_PI, "pi", where);
+    } else {
+        checkAxis(theta_, "theta", kHalfPi, "pi/2 (or, with a ground, at pi)", where);
+        horizon_ = theta_.size() - 1;
+    }
     checkAxis(phi_, "phi", kTwoPi, "2 pi", where);
     const std::size_t nt = theta_.size(), np = phi_.size();
     if (values_.size() != nt * np)
@@ -301,6 +322,12 @@ Goniogram::Goniogram(std::vector<double> theta, std::vector<double> phi, std::ve
             throw Error(cat(where, ": goniogram row theta = 0 is one direction and must be ",
                             "constant (node (0, ", j, ") = ", value(0, j), ", node (0, 0) = ",
                             value(0, 0), ")"));
+    if (hasGround())
+        for (std::size_t j = 1; j < np; ++j)
+            if (value(nt - 1, j) != value(nt - 1, 0))
+                throw Error(cat(where, ": goniogram row theta = pi is one direction and must be ",
+                                "constant (node (", nt - 1, ", ", j, ") = ", value(nt - 1, j), ", node (", nt - 1,
+                                ", 0) = ", value(nt - 1, 0), ")"));
 }
 
 double Goniogram::eval(double thetaRad, double phiRad) const
@@ -311,7 +338,8 @@ double Goniogram::eval(double thetaRad, double phiRad) const
         thetaRad = -thetaRad;
         phiRad += M_PI;
     }
-    if (thetaRad > kHalfPi)
+    const bool below = thetaRad > kHalfPi;
+    if (below && !hasGround())
         return 0.0;
     double p = std::fmod(phiRad, kTwoPi);
     if (p < 0)
@@ -323,10 +351,12 @@ double Goniogram::eval(double thetaRad, double phiRad) const
         static_cast<std::size_t>(std::upper_bound(phi_.begin(), phi_.end(), p) - phi_.begin()) - 1;
     const double u = (p - phi_[j]) / (phi_[j + 1] - phi_[j]);
     auto row = [&](std::size_t i) { return lerp(values_[i * np + j], values_[i * np + j + 1], u); };
-    if (thetaRad >= theta_.back())  // the horizon row itself, so that a node there is exact
-        return row(theta_.size() - 1);
+    // The sky's rows [0, horizon_], or the ground's [horizon_ + 1, last].
+    const std::size_t first = below ? horizon_ + 1 : 0, last = below ? theta_.size() - 1 : horizon_;
+    if (thetaRad >= theta_[last])  // the horizon row (or the nadir) itself, so that a node there is exact
+        return row(last);
     const std::size_t i =
-        static_cast<std::size_t>(std::upper_bound(theta_.begin(), theta_.end(), thetaRad) -
+        static_cast<std::size_t>(std::upper_bound(theta_.begin() + first, theta_.begin() + last + 1, thetaRad) -
                                  theta_.begin()) -
         1;
     const double t = (thetaRad - theta_[i]) / (theta_[i + 1] - theta_[i]);
@@ -335,7 +365,7 @@ double Goniogram::eval(double thetaRad, double phiRad) const
 
 double Goniogram::evalDirection(const glm::dvec3& towardsSky) const
 {
-    if (towardsSky.y < 0)
+    if (towardsSky.y < 0 && !hasGround())
         return 0.0;
     double t, p;
     skyAngles(towardsSky, &t, &p);
@@ -400,7 +430,7 @@ double Goniogram::illuminance(const glm::dvec3& normal) const
     };
     double sum = 0;
     for (std::size_t i = 0; i + 1 < nt; ++i)
-        for (std::size_t j = 0; j + 1 < np; ++j) {
+        for (std::size_t j = 0; j + 1 < np && theta_[i + 1] > theta_[i]; ++j) {
             const Patch c{theta_[i],
                           theta_[i + 1],
                           phi_[j],
@@ -480,6 +510,21 @@ Goniogram Goniogram::refined(double maxThetaStepRad, double maxPhiStepRad) const
             v.push_back(r.f == 0 ? a : lerp(a, rowValue(r.k + 1, c), r.f));
         }
     return Goniogram(std::move(th), std::move(ph), std::move(v), "Goniogram::refined");
+}
+
+Goniogram Goniogram::withGround(double groundLuminance_cd_m2, const std::string& where) const
+{
+    if (hasGround())
+        throw Error(cat(where, ": the sky has a ground already"));
+    if (!std::isfinite(groundLuminance_cd_m2) || groundLuminance_cd_m2 < 0)
+        throw Error(cat(where, ": the ground's luminance must be finite and >= 0 (got ", groundLuminance_cd_m2, ")"));
+    std::vector<double> th = theta_, v = values_;
+    const std::size_t np = phi_.size();
+    for (int k = 0; k <= kGroundThetaSteps; ++k) {
+        th.push_back(k == 0 ? kHalfPi : k == kGroundThetaSteps ? M_PI : kHalfPi + kHalfPi * k / kGroundThetaSteps);
+        v.insert(v.end(), np, groundLuminance_cd_m2);
+    }
+    return Goniogram(std::move(th), phi_, std::move(v), where);
 }
 
 Goniogram uniformSky(double luminance_cd_m2, const std::string& where)

@@ -1,13 +1,19 @@
-// goniogram.h — the sky as a luminance table over the upper hemisphere (DESIGN.md §1 "Sky", §6).
+// goniogram.h — the sky as a luminance table over the upper hemisphere, and optionally the
+// ground's glow below it (DESIGN.md §1 "Sky", §6).
 //
 // A goniogram g holds luminance (cd/m^2) at the nodes of a (theta, phi) grid -- theta the zenith
 // angle from +y, phi the azimuth from north (-z) towards east (+x) -- and is bilinear in
-// (theta, phi) inside each cell, zero below the horizon. The grid may be uneven.
+// (theta, phi) inside each cell. The grid may be uneven. Either it covers the upper hemisphere
+// (theta to pi/2) and is zero below the horizon, or it covers the whole sphere (theta to pi) with
+// a step at the horizon: the node pi/2 appears twice, the first row the sky's horizon, the
+// second the ground's (withGround: Radiance gensky's glowing lower hemisphere). The cell between
+// the two pi/2 rows has zero width, so every integral over it is 0 and no sampler draws it.
 // Invariants, checked by the constructor: theta nodes strictly increasing from exactly 0 to
-// exactly pi/2 (the doubles M_PI / 2 and 2 * M_PI), phi nodes from exactly 0 to exactly 2 pi;
-// values finite and >= 0; the phi = 0 and phi = 2 pi columns equal and the theta = 0 row
-// constant, because each is one set of directions -- so g is a continuous function on the
-// hemisphere and the table cannot contradict itself.
+// exactly pi/2 (the doubles M_PI / 2 and 2 * M_PI), then, for a whole sphere, pi/2 once more and
+// strictly increasing to exactly M_PI; phi nodes from exactly 0 to exactly 2 pi;
+// values finite and >= 0; the phi = 0 and phi = 2 pi columns equal and the theta = 0 (and
+// theta = pi) row constant, because each is one set of directions -- so g is a continuous
+// function on each hemisphere and the table cannot contradict itself.
 //
 // Emission (§3.1, §3.2) picks a cell by its integral of g sin(theta) and a direction inside it by
 // the bilinear density, so the exact cell integrals live here, with F_ij = ∫_cell w g dw.
@@ -23,7 +29,8 @@ namespace fen {
 
 class Goniogram {
 public:
-    // theta: node zenith angles (rad), strictly increasing, first exactly 0, last exactly pi/2.
+    // theta: node zenith angles (rad), strictly increasing, first exactly 0, last exactly pi/2;
+    // or, for the whole sphere, continuing with pi/2 again and on to exactly pi (see above).
     // phi: node azimuths (rad), strictly increasing, first exactly 0, last exactly 2 pi.
     // values: luminance (cd/m^2) at the nodes, row-major: values[i * phi.size() + j] at
     // (theta[i], phi[j]). Any violation of the invariants above throws fen::Error, one line,
@@ -37,12 +44,18 @@ public:
     const std::vector<double>& phi() const { return phi_; }
     const std::vector<double>& values() const { return values_; }
     double value(std::size_t i, std::size_t j) const { return values_[i * phi_.size() + j]; }
+    // Whether the table covers the lower hemisphere too (theta to pi), and its row at the nadir
+    // (theta = pi; constant): the ground's luminance for a withGround() table, 0 without one.
+    bool hasGround() const { return horizon_ + 1 < theta_.size(); }
+    double groundLuminance() const { return hasGround() ? values_.back() : 0.0; }
 
-    // Bilinear luminance (cd/m^2) at (theta, phi); phi is wrapped into [0, 2 pi); 0 for
-    // theta > pi/2; a negative theta is the direction (-theta, phi + pi). At a node it returns
-    // the node's value exactly. NaN in, NaN out.
+    // Bilinear luminance (cd/m^2) at (theta, phi); phi is wrapped into [0, 2 pi); a negative theta
+    // is the direction (-theta, phi + pi). theta <= pi/2 reads the sky's rows (the horizon itself
+    // is sky); theta > pi/2 the ground's, or 0 without a ground. At a node it returns the node's
+    // value exactly. NaN in, NaN out.
     double eval(double thetaRad, double phiRad) const;
-    // The same towards a direction (any non-zero length); 0 below the horizon (y < 0).
+    // The same towards a direction (any non-zero length); 0 below the horizon (y < 0) without a
+    // ground.
     double evalDirection(const glm::dvec3& towardsSky) const;
 
     // Exact integrals over cell (i, j) = [theta_i, theta_i+1] x [phi_j, phi_j+1]
@@ -59,11 +72,13 @@ public:
     // for -n: the portal strategy's eq. (2) per cell and portal plane.
     double cellClippedIntegral(std::size_t i, std::size_t j, const glm::dvec3& n) const;
 
-    // ∫ over the hemisphere of g dw (cd/m^2 sr): the sum of cellIntegralSin.
+    // ∫ over the table (the hemisphere, or the whole sphere with a ground) of g dw (cd/m^2 sr):
+    // the sum of cellIntegralSin.
     double integral() const;
     // Illuminance (lux) of a plane with normal `normal` (any non-zero length) facing the sky:
     // ∫ g(w) max(0, w . n) dw, with relative error below 1e-6. Cells on one side of the plane
     // are exact (F_ij . n); the few that the plane cuts are split until the pieces are tiny.
+    // With a ground, a plane facing down (n = -y) receives pi L_g, and one facing up only the sky.
     double illuminance(const glm::dvec3& normal) const;
 
     // The same function on a finer grid: each cell split evenly so that no theta step exceeds
@@ -71,8 +86,16 @@ public:
     // The new nodes take the bilinear values, so eval() agrees with this one to rounding.
     Goniogram refined(double maxThetaStepRad, double maxPhiStepRad) const;
 
+    // This sky with the ground below the horizon glowing uniformly at `groundLuminance_cd_m2`
+    // (finite, >= 0): the rows of this table, the horizon's row again with the ground's value,
+    // and kGroundThetaSteps even ground rows down to the nadir (1 degree apart), on the same phi nodes.
+    // Throws fen::Error (naming `where`) for a table that has a ground already or a bad value.
+    static constexpr int kGroundThetaSteps = 90;  // 1 degree: sin(theta) varies little in a cell
+    Goniogram withGround(double groundLuminance_cd_m2, const std::string& where = "sky") const;
+
 private:
     std::vector<double> theta_, phi_, values_;
+    std::size_t horizon_ = 0;  // the sky's horizon row (the first pi/2); the last row without a ground
 };
 
 // Unit vector towards the sky at (theta, phi): (sin theta sin phi, cos theta, -sin theta cos phi).

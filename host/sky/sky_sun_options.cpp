@@ -66,6 +66,9 @@ void addSkySunOptions(CLI::App* render, SkySunOptions* o)
     render->add_option("--sun-at", o->sunAt,
                        "Local date and time with its UTC offset, e.g. 2026-06-21T14:00+02:00: the sun's "
                        "position at --site");
+    render->add_option("--ground-albedo", o->groundAlbedo,
+                       "The ground's albedo, 0 to 1: below the horizon the sky glows at albedo x the horizontal "
+                       "illuminance of the sky and sun / pi (0: off, the default)");
 }
 
 double cieHorizontalIlluminancePerZenith(int type, double sunAltitudeDeg, double sunAzimuthDeg)
@@ -164,6 +167,8 @@ SkySunReport applySkySunOptions(const SkySunOptions& o, Scene* scene)
         if (spec.type != SkySpec::Type::None && !brightness)
             throw Error(cat("--sky ", printable(s, 40), " needs its brightness: --sky-zenith L (cd/m^2) or --sky-lux E "
                             "(diffuse horizontal illuminance, lux)"));
+        if (spec.type != SkySpec::Type::None)
+            spec.groundAlbedo = scene->sky.groundAlbedo;  // the file's ground stays unless --ground-albedo says
         scene->sky = spec;
     } else if (brightness && scene->sky.type == SkySpec::Type::None) {
         throw Error(cat(o.skyLux ? "--sky-lux" : "--sky-zenith", ": the scene has no sky; give one with --sky"));
@@ -180,6 +185,14 @@ SkySunReport applySkySunOptions(const SkySunOptions& o, Scene* scene)
                             "--sun ALT,AZ or --site and --sun-at (and --sun-lux 0 for the sky alone)"));
         sky.sunAltitudeDeg = 90.0;
         sky.sunAzimuthDeg = 0.0;
+    }
+    if (o.groundAlbedo) {
+        if (!(*o.groundAlbedo >= 0.0 && *o.groundAlbedo <= 1.0))
+            throw Error(cat("--ground-albedo ", *o.groundAlbedo, ": must be in 0..1 (0: no ground glow)"));
+        if (sky.type == SkySpec::Type::None && *o.groundAlbedo > 0.0)
+            throw Error("--ground-albedo: the scene has no sky; give one with --sky (the ground reflects the sky's "
+                        "and the sun's light: --sky uniform --sky-zenith 0 for the sun's alone)");
+        sky.groundAlbedo = *o.groundAlbedo;
     }
     if (o.skyZenith_cd_m2 || o.skyLux) {
         if (sky.type == SkySpec::Type::Uniform)

@@ -6,6 +6,7 @@
 //   --sun ALT,AZ | none                the sun's position (degrees; azimuth from north towards east)
 //   --site LAT,LON --sun-at TIME       ... or from a place and a moment (solar_position.h)
 //   --sun-lux E                        the sun's normal illuminance (lux)
+//   --ground-albedo A                  the ground's albedo, 0..1: its glow below the horizon (0: off)
 // Invariants: whatever is given replaces what the file says, and nothing else changes; a CIE sky
 // always takes its sun position from the sun used (given or the file's); every inconsistency is a
 // one-line fen::Error naming the option before anything is rendered.
@@ -31,6 +32,7 @@ struct SkySunOptions {
     std::optional<double> sunLux;          // --sun-lux
     std::optional<std::string> site;       // --site LAT,LON
     std::optional<std::string> sunAt;      // --sun-at
+    std::optional<double> groundAlbedo;    // --ground-albedo
 };
 
 // Registers the options above on `render` (the `fenestra render` subcommand).

@@ -19,7 +19,7 @@ struct SkyTables {
     std::vector<float> theta, phi, values;  // node angles (rad) and luminances (cd/m^2)
     std::vector<double> cellSin, cellFlat;  // per cell: ∫∫ g sin(theta), ∫∫ g (d theta d phi)
     std::uint32_t thetaNodes = 0, phiNodes = 0, cells = 0;
-    double integral_cd_m2_sr = 0.0;         // ∫ g dω over the upper hemisphere
+    double integral_cd_m2_sr = 0.0;         // ∫ g dω over the table (the ground's glow included)
     double maxLuminance_cd_m2 = 0.0;
 };
 SkyTables makeSkyTables(const std::optional<Goniogram>& sky);

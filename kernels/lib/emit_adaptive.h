@@ -6,8 +6,9 @@
  * learned from the contributions of earlier paths, mixed with a defensive share of the base
  * density. Per path, one Philox block: 32 bits (or the batch's lattice: lib/emit_source.h) pick a
  * cell (integer alias table, exact P), 16 + 16
- * bits the direction in the cell's box (uniform in solid angle: cos(theta) = 1 - s, phi = 2 pi t)
- * or in the sun's cone, 16 + 16 bits the origin in its box. Which sixteenth of the cell the path
+ * bits the direction in the cell's box (uniform in solid angle: cos(theta) = 1 - s, phi = 2 pi t;
+ * s in [1, 2) is the ground's glow below the horizon, whose light travels upwards) or in the
+ * sun's cone, 16 + 16 bits the origin in its box. Which sixteenth of the cell the path
  * fell in (its origin quarter and its direction quarter) rides along in beta.w, and connect.cl
  * adds the luminance of every contribution that reaches the camera (and its square) to that
  * part's statistics (paths are not counted: the host knows how many each part should get).

@@ -52,11 +52,11 @@ static inline void orthonormal_basis(float3 n, float3* t1, float3* t2)
 }
 
 /* An orthonormal basis (t1, t2) of the plane orthogonal to unit n that varies continuously with n
-   everywhere but at n = +y: Duff et al.'s construction in the frame (x, z, -y). Light travels
-   downwards (n.y < 0), so nearby directions of travel always get nearby bases -- what the
-   adaptive strategy needs, since it learns where on the disk spanned by (t1, t2) light matters.
-   (orthonormal_basis flips at n.z = 0, which would split a bin of directions in two.) */
-static inline void travel_basis(float3 n, float3* t1, float3* t2)
+   everywhere but at n = +y: Duff et al.'s construction in the frame (x, z, -y). Sky and sun light
+   travels downwards (n.y <= 0), so nearby directions of travel always get nearby bases -- what
+   the adaptive strategy needs, since it learns where on the disk spanned by (t1, t2) light
+   matters. (orthonormal_basis flips at n.z = 0, which would split a bin of directions in two.) */
+static inline void travel_basis_down(float3 n, float3* t1, float3* t2)
 {
     const float3 m = (float3)(n.x, n.z, -n.y);
     const float a = -1.0f / (1.0f + m.z);
@@ -65,6 +65,22 @@ static inline void travel_basis(float3 n, float3* t1, float3* t2)
     const float3 s2 = (float3)(b, 1.0f + m.y * m.y * a, -m.y);
     *t1 = (float3)(s1.x, -s1.z, s1.y);
     *t2 = (float3)(s2.x, -s2.z, s2.y);
+}
+
+/* The same for any direction of travel: the ground's glow travels upwards (n.y > 0), where the
+   construction above is singular at n = +y, so there it is the mirror image, in the horizontal
+   plane, of the basis of n's mirror image -- continuous over the upper hemisphere of travel, and
+   discontinuous only at the horizon, which no adaptive direction box straddles. */
+static inline void travel_basis(float3 n, float3* t1, float3* t2)
+{
+    if (!(n.y > 0.0f)) {
+        travel_basis_down(n, t1, t2);
+        return;
+    }
+    float3 a, b;
+    travel_basis_down((float3)(n.x, -n.y, n.z), &a, &b);
+    *t1 = (float3)(a.x, -a.y, a.z);
+    *t2 = (float3)(b.x, -b.y, b.z);
 }
 
 /* Cosine-weighted direction around unit n: density cos(theta)/pi per steradian. */

@@ -2,8 +2,12 @@
  * (DESIGN.md §1 "Sky", §3.1 `uniform` emission).
  *
  * The goniogram g is tabulated at (theta, phi) nodes (radians; theta from the zenith, phi from
- * north towards east), bilinear inside a cell, zero below the horizon; the direction towards the
- * sky at (theta, phi) is (sin t sin p, cos t, -sin t cos p). Sampling: a cell k chosen with some
+ * north towards east), bilinear inside a cell; the direction towards the sky at (theta, phi) is
+ * (sin t sin p, cos t, -sin t cos p). Its theta nodes end at pi/2 (zero below the horizon), or,
+ * with the ground's glow, at pi: the node pi/2 then appears twice, the sky's horizon row and the
+ * ground's (host/sky/goniogram.h), and the zero-width cell between them is never drawn (its
+ * integral, and so its probability, is 0) nor looked up (a lookup at pi/2 lands on the ground's
+ * row: every direction with y <= 0 reads the ground). Sampling: a cell k chosen with some
  * probability P_k (lib/emit_uniform.h: the joint source table), then (theta, phi) in the
  * cell with density g_bilinear / B_k per d(theta) d(phi), B_k the cell's integral of g. The density
  * per steradian is then P_k g / (B_k sin theta), so a sky path's weight g / p is
@@ -15,7 +19,7 @@
 #include "lib/sampling.h"
 
 typedef struct {
-    const global float* theta;   /* nt node zenith angles, increasing from 0 to pi/2 */
+    const global float* theta;   /* nt node zenith angles, non-decreasing from 0 to pi/2, or to pi with a ground */
     const global float* phi;     /* np node azimuths, increasing from 0 to 2 pi */
     const global float* values;  /* nt x np luminances (cd/m^2), row-major by theta */
     const global float* factor;  /* per cell: B_k / P_k */
@@ -35,7 +39,8 @@ static inline Sky sky_from(const global float* theta, const global float* phi,
     return s;
 }
 
-/* Largest i < n-1 with nodes[i] <= x (nodes increasing, n >= 2). */
+/* Largest i < n-1 with nodes[i] <= x (nodes non-decreasing, n >= 2): never the first of two
+   equal nodes below n-1, so never a zero-width cell. */
 static inline uint sky_node_search(const global float* nodes, uint n, float x)
 {
     uint lo = 0, hi = n - 1;
@@ -49,7 +54,14 @@ static inline uint sky_node_search(const global float* nodes, uint n, float x)
     return lo;
 }
 
-/* Luminance at zenith angle theta in [0, pi/2] and azimuth phi in [0, 2 pi] (radians). */
+/* Whether the table holds the ground's glow below the horizon (its last node is pi, not pi/2). */
+static inline int sky_has_ground(const Sky* s)
+{
+    return s->nt >= 2 && s->theta[s->nt - 1] > 2.0f;
+}
+
+/* Luminance at zenith angle theta in [0, pi/2] (with a ground, [0, pi]) and azimuth phi in
+   [0, 2 pi] (radians). */
 static inline float sky_eval_angles(const Sky* s, float theta, float phi)
 {
     if (s->nt < 2)
@@ -63,19 +75,21 @@ static inline float sky_eval_angles(const Sky* s, float theta, float phi)
     return mix(mix(row0[j], row0[j + 1], sp), mix(row1[j], row1[j + 1], sp), st);
 }
 
-/* Luminance arriving from direction `to_sky` (unit, pointing at the sky). */
+/* Luminance arriving from direction `to_sky` (unit, pointing at the sky); below the horizon
+   (y <= 0) the ground's glow, or 0 without one. */
 static inline float sky_eval(const Sky* s, float3 to_sky)
 {
-    if (s->nt < 2 || to_sky.y <= 0.0f)
+    if (s->nt < 2 || (to_sky.y <= 0.0f && !sky_has_ground(s)))
         return 0.0f;
-    const float theta = acos(fmin(to_sky.y, 1.0f));
+    const float theta = acos(clamp(to_sky.y, -1.0f, 1.0f));
     float phi = atan2(to_sky.x, -to_sky.z);
     if (phi < 0.0f)
         phi += 2.0f * FEN_PI;
     return sky_eval_angles(s, theta, phi);
 }
 
-/* A direction towards the sky in cell k with the density above; *weight = factor[k] sin(theta),
+/* A direction towards the sky in cell k (below the horizon in a ground cell) with the density
+   above; *weight = factor[k] sin(theta),
    the path weight per unit of the area the strategy's lines are drawn over (uniform: the box's
    silhouette). */
 static inline float3 sky_sample(const Sky* s, uint k, float u_theta, float u_phi, float* weight)

@@ -72,7 +72,8 @@ FEN_ASSERT_SIZE(PortalParams, 16);
 /* One cell of the learned grid over emitted rays (x, v): a box of directions times a box of the
    2D parametrisation of the origin in a region (the emission disk, or one portal plane's frame).
    Directions: the sun (its cone), or a box of (s, t) in [0,1)^2 with cos(theta) = 1 - s and
-   phi = 2 pi t -- equal areas of (s, t) are equal solid angles, so a box spans 2 pi ds dt sr. A
+   phi = 2 pi t -- equal areas of (s, t) are equal solid angles, so a box spans 2 pi ds dt sr; with
+   the ground's glow also boxes of s in [1, 2), the lower hemisphere (none straddles s = 1). A
    path picks a cell with probability P(cell), its direction uniformly in the box (or in the sun's
    cone) and its origin uniformly in the origin box. */
 typedef struct {

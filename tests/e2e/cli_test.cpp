@@ -820,6 +820,49 @@ TEST(CliRender, OutOfRangeOptionsAreErrorsNotDefaults)
     EXPECT_EQ(run("render " + good + out + " --paths 2e4 --width 8").status, 0);
 }
 
+// The ground's glow (DESIGN.md §1): its albedo from the file or --ground-albedo (which overrides
+// it; 0 is off), reported with the luminance it glows at, L_g = albedo E_h / pi (E_h the sky's and
+// the sun's horizontal illuminance); an albedo outside [0, 1] is a one-line error naming the key
+// or the option.
+TEST(CliRender, GroundGlowIsReportedAndItsAlbedoChecked)
+{
+    const std::string dir = test::tempDir("cli-ground");
+    test::GltfWriter w = plateScene();
+    w.doc()["scenes"][0]["extras"]["sky"]["ground_albedo"] = 0.25;
+    const std::string scene = w.write(dir + "/ground.gltf");
+    const std::string args = " --paths 20000 --width 16 --no-progress";
+    const auto sky = [&](const std::string& scenePath, const std::string& name, const std::string& more) {
+        const CliRun r = run("render " + scenePath + " --out " + dir + "/" + name + ".exr" + args + more);
+        EXPECT_EQ(r.status, 0) << r.err;
+        return nlohmann::json::parse(slurp(dir + "/" + name + ".json"));
+    };
+    nlohmann::json j = sky(scene, "file", "");
+    const double E = j["sky"]["horizontal_illuminance_lux"].get<double>();  // no sun: the sky's alone
+    EXPECT_NEAR(E, M_PI * 1000.0, 1e-6 * E);
+    EXPECT_EQ(j["sky"]["ground_albedo"].get<double>(), 0.25);
+    EXPECT_NEAR(j["sky"]["ground_luminance_cd_m2"].get<double>(), 0.25 * E / M_PI, 1e-9 * E);
+    j = sky(scene, "off", " --ground-albedo 0");
+    EXPECT_EQ(j["sky"]["ground_albedo"].get<double>(), 0.0);
+    EXPECT_EQ(j["sky"]["ground_luminance_cd_m2"].get<double>(), 0.0);
+    j = sky(scene, "half", " --ground-albedo 0.5");
+    EXPECT_NEAR(j["sky"]["ground_luminance_cd_m2"].get<double>(), 0.5 * E / M_PI, 1e-9 * E);
+    // The sun adds E_sun sin(altitude): the room's 75,000 lux sun, its CIE clear sky.
+    j = sky(std::string(FEN_SCENES_DIR) + "/room.gltf", "room", " --ground-albedo 0.2");
+    const double Eh = j["sky"]["horizontal_illuminance_lux"].get<double>() +
+                      75000.0 * std::sin(j["sun"]["altitude_deg"].get<double>() * M_PI / 180.0);
+    EXPECT_NEAR(j["sky"]["ground_luminance_cd_m2"].get<double>(), 0.2 * Eh / M_PI, 1e-6 * Eh);
+    EXPECT_EQ(sky(std::string(FEN_SCENES_DIR) + "/room.gltf", "room0", "")["sky"]["ground_luminance_cd_m2"], 0.0);
+    expectError(run("render " + scene + " --out " + dir + "/x.exr" + args + " --ground-albedo 1.5"), 1,
+                "--ground-albedo 1.5: must be in 0..1");
+    expectError(run("render " + scene + " --out " + dir + "/x.exr" + args + " --ground-albedo -0.1"), 1,
+                "--ground-albedo -0.1");
+    expectError(run("render " + scene + " --out " + dir + "/x.exr" + args + " --sky none --ground-albedo 0.3"), 1,
+                "--ground-albedo: the scene has no sky");
+    w.doc()["scenes"][0]["extras"]["sky"]["ground_albedo"] = 2;
+    expectError(run("render " + w.write(dir + "/bad.gltf") + " --out " + dir + "/x.exr" + args), 1,
+                "bad.gltf: scenes[0].extras.sky.ground_albedo: 2 is outside [0, 1]");
+}
+
 // Outputs never overwrite what the render reads, a checkpoint overwrites only a checkpoint, and a
 // FIFO given as a checkpoint to resume is refused at once instead of blocking for ever.
 TEST(CliRender, OutputsNeverOverwriteInputs)

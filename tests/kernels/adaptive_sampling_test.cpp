@@ -53,7 +53,7 @@ struct Probe {
 Probe emitPaths(ocl::Context& ctx, const Scene& scene, EmissionMethod base, std::uint32_t n,
                 double (*shape)(std::size_t))
 {
-    const auto g = buildSky(scene.sky);
+    const auto g = buildSky(scene);
     const SkyTables tables = makeSkyTables(g);
     const DeviceSky sky(ctx, tables);
     EmissionSettings s;
@@ -136,6 +136,85 @@ TEST(AdaptiveSampling, WeightsCarryTheExactDensityOverUniform)
     expectMeanWeightIsTheFlux(p, "uniform base, uneven grid");
     const Probe b = emitPaths(*ctx, paneScene(), EmissionMethod::Uniform, 1u << 21, nullptr);
     expectMeanWeightIsTheFlux(b, "uniform base, base grid");
+}
+
+TEST(AdaptiveSampling, TheGroundsLightTravelsUpFromTheWholeDisk)
+{
+    // With the ground's glow the grid's sky boxes also cover s in [1, 2), the lower hemisphere;
+    // its paths travel upwards, their origins uniform on the disk of radius R orthogonal to the
+    // direction and 1 % beyond the sphere (travel_basis mirrored there: Duff's frame is singular
+    // at +y). The mean weight is the flux through the disk, the ground's included.
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    Scene scene = paneScene();
+    scene.sky.groundAlbedo = 0.3;
+    expectMeanWeightIsTheFlux(emitPaths(*ctx, scene, EmissionMethod::Uniform, 1u << 21, unevenShape),
+                              "uniform base with a ground, uneven grid");
+    // The base grid: every origin box of a direction box equally likely, so origins uniform on the disk.
+    const Probe p = emitPaths(*ctx, scene, EmissionMethod::Uniform, 1u << 20, nullptr);
+    glm::dvec3 centre;
+    double radius;
+    emissionSphere(scene, &centre, &radius);
+    constexpr int kBins = 20;
+    std::vector<double> obs(kBins, 0.0), exp(kBins, 0.0);
+    std::size_t up = 0;
+    for (std::size_t i = 0; i < p.beta.size(); ++i) {
+        const glm::dvec3 o(p.org[i].s[0], p.org[i].s[1], p.org[i].s[2]), d(p.dir[i].s[0], p.dir[i].s[1], p.dir[i].s[2]);
+        if (!(d.y > 0.0))
+            continue;
+        ++up;
+        const glm::dvec3 r = o - centre;
+        const double along = glm::dot(r, d);
+        const double perp2 = glm::dot(r, r) - along * along;
+        ASSERT_NEAR(along, -1.01 * radius, 1e-4 * radius) << "path " << i;
+        ASSERT_LE(perp2, radius * radius * (1.0 + 1e-4)) << "path " << i;
+        obs[std::min(kBins - 1, static_cast<int>(perp2 / (radius * radius) * kBins))] += 1.0;
+    }
+    ASSERT_GT(up, p.beta.size() / 20) << "the ground's cells must be drawn";
+    for (double& e : exp)
+        e = static_cast<double>(up) / kBins;  // uniform on a disk: r^2 uniform
+    EXPECT_GT(test::chiSquarePValue(obs, exp), kMinP);
+}
+
+TEST(AdaptiveSampling, TheDisksBasisIsOrthonormalForEveryDirectionOfTravel)
+{
+    // The ground's light travels upwards, where Duff's frame (continuous for the sky's downward
+    // light) divides by 1 - n.y: straight up it is 0/0, just off it digits are lost. The mirrored
+    // frame keeps (t1, t2, n) orthonormal to float precision in every direction, and downward
+    // directions keep the frame they had.
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    std::vector<cl_float4> dirs;
+    const auto add = [&](glm::dvec3 d) {
+        d = glm::normalize(d);
+        dirs.push_back({{float(d.x), float(d.y), float(d.z), 0.0f}});
+    };
+    for (double y : {1.0, -1.0})
+        add({0, y, 0});
+    for (double eps : {1e-7, 1e-5, 1e-3, 0.1})
+        for (double y : {1.0, -1.0}) {
+            add({eps, y, 0});
+            add({0, y, -eps});
+            add({-eps, y, eps});
+        }
+    for (int k = 0; k < 1000; ++k)  // a spiral over the sphere
+        add(skyDirection(std::acos(1.0 - 2.0 * (k + 0.5) / 1000), 2.39996323 * k));
+    const auto n = static_cast<std::uint32_t>(dirs.size());
+    cl::Kernel k(ctx->program("test_adaptive_probes.cl", {"FEN_BVH_WIDTH=8"}), "travel_basis_probe");
+    cl::Buffer in = ctx->buffer(CL_MEM_READ_ONLY, n * 16, "directions", dirs.data());
+    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, 2 * n * 16, "bases");
+    ocl::setKernelArgs(k, in, out, n);
+    ocl::launch(*ctx, k, "travel_basis_probe", n);
+    std::vector<cl_float4> b(2 * n);
+    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, b.size() * 16, b.data());
+    const auto v = [](const cl_float4& f) { return glm::dvec3(f.s[0], f.s[1], f.s[2]); };
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const glm::dvec3 d = v(dirs[i]), t1 = v(b[2 * i]), t2 = v(b[2 * i + 1]);
+        SCOPED_TRACE(testing::Message() << "direction " << d.x << " " << d.y << " " << d.z);
+        EXPECT_NEAR(glm::length(t1), 1.0, 1e-5);
+        EXPECT_NEAR(glm::length(t2), 1.0, 1e-5);
+        EXPECT_NEAR(glm::dot(t1, t2), 0.0, 1e-5);
+        EXPECT_NEAR(glm::dot(t1, d), 0.0, 1e-5);
+        EXPECT_NEAR(glm::dot(t2, d), 0.0, 1e-5);
+    }
 }
 
 TEST(AdaptiveSampling, PortalCellsAndRejectedDiskLinesPartitionTheRays)

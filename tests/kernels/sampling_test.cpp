@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "cl/launch.h"
 #include "sky/sky_tables.h"
@@ -210,14 +211,14 @@ SkyRun runSky(ocl::Context& ctx, const SkySampler& s, std::uint32_t n)
     return r;
 }
 
-TEST(Sampling, SkyDirectionsFollowTheGoniogramCellByCell)
+// Directions drawn from g's cells, binned 2 x 2 per cell, against the bilinear function's mass;
+// and the device's luminance lookup in each against the host's.
+void expectSkyDirectionsFollowCellByCell(ocl::Context& ctx, const Goniogram& g)
 {
-    FEN_CL_CONTEXT_OR_SKIP(ctx);
-    const Goniogram g = test::unevenTableSky();
     const SkySampler sampler(g);
     const SkyTables& t = sampler.t;
     const std::uint32_t n = 400000;
-    const SkyRun r = runSky(*ctx, sampler, n);
+    const SkyRun r = runSky(ctx, sampler, n);
     // Bins: each cell split 2 x 2; the expected mass of a sub-rectangle is the cell's probability
     // times the bilinear function's share there (exact: bilinear integrals).
     const std::size_t nt = t.thetaNodes, np = t.phiNodes;
@@ -260,6 +261,54 @@ TEST(Sampling, SkyDirectionsFollowTheGoniogramCellByCell)
         const auto& s = r.dirWeight[i];
         const double host = g.evalDirection(glm::dvec3(s.s[0], s.s[1], s.s[2]));
         EXPECT_NEAR(r.lum[i], host, 1e-4 * host + 1e-3);
+    }
+}
+
+TEST(Sampling, SkyDirectionsFollowTheGoniogramCellByCell)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    expectSkyDirectionsFollowCellByCell(*ctx, test::unevenTableSky());
+}
+
+TEST(Sampling, SkyWithAGroundFollowsItsTableOverTheWholeSphere)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // The ground's rows below the horizon are cells like the sky's; the zero-width cell of the
+    // horizon's step has probability 0.
+    expectSkyDirectionsFollowCellByCell(*ctx, test::unevenTableSky().withGround(300.0));
+}
+
+TEST(Sampling, SkyWithAGroundWeightsIntegrateBothHemispheres)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // E[w] = ∫ g dω over the sphere, E[w max(0, y)] the sky's horizontal illuminance and
+    // E[w max(0, -y)] = pi L_g (the ground's, facing down); every draw below the horizon looks up
+    // L_g on the device. 4 sigma of the sample standard error.
+    for (const Goniogram& g : {test::unevenTableSky().withGround(300.0), uniformSky(1234.0).withGround(777.0)}) {
+        const SkyRun r = runSky(*ctx, SkySampler(g), 400000);
+        std::vector<double> w, up, down;
+        std::size_t below = 0;
+        for (std::size_t i = 0; i < r.dirWeight.size(); ++i) {
+            const auto& s = r.dirWeight[i];
+            w.push_back(s.s[3]);
+            up.push_back(s.s[3] * std::max(0.0f, s.s[1]));
+            down.push_back(s.s[3] * std::max(0.0f, -s.s[1]));
+            if (s.s[1] < 0.0f) {
+                ++below;
+                EXPECT_EQ(r.lum[i], static_cast<float>(g.groundLuminance())) << i;
+            }
+        }
+        const auto a = test::meanAndStdErr(w), b = test::meanAndStdErr(up), c = test::meanAndStdErr(down);
+        const double Ed = g.illuminance(glm::dvec3(0, -1, 0));
+        EXPECT_NEAR(Ed, M_PI * g.groundLuminance(), 1e-9 * Ed);
+        std::printf("[ sampling ] ground %g: integral %+.2f sigma, up %+.2f sigma, down %+.2f sigma\n",
+                    g.groundLuminance(), (a.mean - g.integral()) / a.se,
+                    (b.mean - g.illuminance(glm::dvec3(0, 1, 0))) / b.se, (c.mean - Ed) / c.se);
+        EXPECT_NEAR(a.mean, g.integral(), 4.0 * a.se) << "relative se " << a.se / a.mean;
+        EXPECT_NEAR(b.mean, g.illuminance(glm::dvec3(0, 1, 0)), 4.0 * b.se);
+        EXPECT_NEAR(c.mean, Ed, 4.0 * c.se);
+        EXPECT_LT(a.se / a.mean, 2e-3) << "the sampler should give nearly constant weights";
+        EXPECT_GT(below, r.dirWeight.size() / 10);
     }
 }
 

@@ -154,15 +154,23 @@ TEST(UniformSampling, SourcesShareTheFluxIntoTheBox)
     const double sunY = luminance(8e4, 9e4, 1e5);
     EXPECT_NEAR(u.sunFlux, sunY * u.box.silhouetteArea(scene.sun.travelDirection), 1e-9 * u.sunFlux);
     EXPECT_NEAR(u.pSun, u.sunFlux / (u.sunFlux + u.skyFlux), 1e-6);
+    // With the ground's glow below the horizon the lower hemisphere's cells send their light in
+    // too: a uniform L_g over it adds ∫_lower |w_a| L_g dw = pi L_g through each pair of faces.
+    const double Lg = 300.0;
+    const Goniogram gg = g.withGround(Lg);
+    const UniformSources ug = setupUniformEmission(scene, makeSkyTables(gg), gg);
+    const double ground = M_PI * Lg * (s.y * s.z + s.z * s.x + s.x * s.y);
+    EXPECT_NEAR(ug.skyFlux - u.skyFlux, ground, 1e-5 * ug.skyFlux);
+    EXPECT_EQ(ug.sunFlux, u.sunFlux);
 }
 
-TEST(UniformSampling, WeightsCarryTheFluxIntoTheBox)
+// A floor and a wall (the box is not flat), a parallel sun and a CIE sky: E[Y(weight)] is
+// E_Y A(sun) + ∫ A g dw, the strategy's emittedFluxPerPath, if every path's weight is the
+// radiance over its exact density. Every origin starts outside the bounding sphere and its
+// line enters the box. With a ground (albedo rhoG > 0) g covers the whole sphere, and the
+// lines from below the horizon travel upwards into the box.
+void expectWeightsCarryTheFluxIntoTheBox(ocl::Context& ctx, double rhoG)
 {
-    // A floor and a wall (the box is not flat), a parallel sun and a CIE sky: E[Y(weight)] is
-    // E_Y A(sun) + ∫ A g dw, the strategy's emittedFluxPerPath, if every path's weight is the
-    // radiance over its exact density. Every origin starts outside the bounding sphere and its
-    // line enters the box.
-    FEN_CL_CONTEXT_OR_SKIP(ctx);
     test::SceneBuilder b;
     const int m = b.material("m", glm::vec3(0.5f));
     b.add("floor", rect({-3, 0, -4}, {7, 0, 0}, {0, 0, 9}), m);
@@ -170,12 +178,14 @@ TEST(UniformSampling, WeightsCarryTheFluxIntoTheBox)
     b.sun(35.0, 160.0, 40000.0);
     b.cieSky(12, 2500.0, 35.0, 160.0);
     b.camera({0, 1, 2}, {0, 1, 0}, {0, 1, 0}, 60.0);
-    const Scene scene = b.build();
-    const auto g = buildSky(scene.sky);
+    Scene scene = b.build();
+    scene.sky.groundAlbedo = rhoG;
+    const auto g = buildSky(scene);
+    ASSERT_EQ(g->hasGround(), rhoG > 0.0);
     const SkyTables tables = makeSkyTables(g);
-    const DeviceSky sky(*ctx, tables);
+    const DeviceSky sky(ctx, tables);
     const double fixedScale = std::ldexp(1.0, 40) / referenceLuminance(scene, tables);
-    auto strategy = makeUniformStrategy({*ctx, scene, tables, g, sky, 8, fixedScale});
+    auto strategy = makeUniformStrategy({ctx, scene, tables, g, sky, 8, fixedScale});
     const EmissionBox box = emissionBox(scene);
 
     const dev::RenderParams params = test::emissionParams(scene, tables, 9);
@@ -183,12 +193,12 @@ TEST(UniformSampling, WeightsCarryTheFluxIntoTheBox)
     double radius;
     emissionSphere(scene, &centre, &radius);
     const std::uint32_t n = 1u << 20;
-    cl::Kernel k(ctx->program("test_uniform_probes.cl"), "uniform_emit_probe");
-    const test::EmittedPaths e = test::runEmitProbe(*ctx, k, "uniform_emit_probe", *strategy, params, n);
+    cl::Kernel k(ctx.program("test_uniform_probes.cl"), "uniform_emit_probe");
+    const test::EmittedPaths e = test::runEmitProbe(ctx, k, "uniform_emit_probe", *strategy, params, n);
     const auto &vb = e.beta, &vo = e.org, &vd = e.dir;
 
     std::vector<double> y(n);
-    std::size_t misses = 0, inside = 0;
+    std::size_t misses = 0, inside = 0, upwards = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
         const auto& w = vb[i].s;
         ASSERT_TRUE(std::isfinite(w[0]) && std::isfinite(w[1]) && std::isfinite(w[2])) << "path " << i;
@@ -197,15 +207,33 @@ TEST(UniformSampling, WeightsCarryTheFluxIntoTheBox)
         inside += glm::length(o - centre) < radius * (1.0 - 1e-6);
         double t = 0.0;
         misses += entryFace(box, o, d, &t) < 0;
+        upwards += d.y > 0.0;
     }
     EXPECT_EQ(inside, 0u) << "origins must start outside the bounding sphere";
     EXPECT_EQ(misses, 0u) << "every line must enter the box";
+    if (rhoG > 0.0) {
+        EXPECT_GT(upwards, n / 20) << "the ground's light travels upwards";
+    } else {
+        EXPECT_EQ(upwards, 0u);
+    }
     const auto ms = test::meanAndStdErr(y);
     const double flux = strategy->emittedFluxPerPath();
-    std::printf("[ uniform  ] mean weight %.6g lm, flux into the box %.6g lm, se %.2g (%+.2f sigma)\n", ms.mean,
-                flux, ms.se, (ms.mean - flux) / ms.se);
+    std::printf("[ uniform  ] ground albedo %g: mean weight %.6g lm, flux into the box %.6g lm, se %.2g (%+.2f sigma)\n",
+                rhoG, ms.mean, flux, ms.se, (ms.mean - flux) / ms.se);
     EXPECT_NEAR(ms.mean, flux, 4.0 * ms.se) << "relative se " << ms.se / ms.mean;
     EXPECT_LT(ms.se / ms.mean, 3e-3) << "the estimate must be sharp enough to mean something";
+}
+
+TEST(UniformSampling, WeightsCarryTheFluxIntoTheBox)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    expectWeightsCarryTheFluxIntoTheBox(*ctx, 0.0);
+}
+
+TEST(UniformSampling, WeightsCarryTheFluxIntoTheBoxFromTheGroundToo)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    expectWeightsCarryTheFluxIntoTheBox(*ctx, 0.3);
 }
 
 }  // namespace

@@ -132,7 +132,7 @@ TEST(Sensors, UnobstructedUnderCieOvercastSky)
     const double Lz = 3000.0;
     b.cieSky(1, Lz, 45.0, 180.0);
     const Scene scene = b.build();
-    const double tableLux = buildSky(scene.sky)->illuminance(glm::dvec3(0.0, 1.0, 0.0));
+    const double tableLux = buildSky(scene)->illuminance(glm::dvec3(0.0, 1.0, 0.0));
     std::printf("[ sensors  ] CIE overcast table: %.6g lux against the closed form's %.6g (%+.3f %%)\n", tableLux,
                 7.0 * M_PI * Lz / 9.0, 100.0 * (tableLux / (7.0 * M_PI * Lz / 9.0) - 1.0));
     EXPECT_NEAR(tableLux, 7.0 * M_PI * Lz / 9.0, 0.005 * 7.0 * M_PI * Lz / 9.0);
@@ -179,6 +179,32 @@ TEST(Sensors, VerticalSensorSeesHalfAUniformSky)
     addMeshSensor(set, "wall", "node", "test wall", rect({-1, 0.5f, 0}, {2, 0, 0}, {0, 2, 0}), 0.5);
     const SensorRun run = renderSensors(*ctx, b.build(), set, 4u << 20);
     expectGridMean(run, set, M_PI * 1000.0 / 2.0, 0.005, "uniform sky, vertical");
+}
+
+TEST(Sensors, VerticalSensorSeesTheGroundGlow)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // No modelled ground (a speck behind and below the sensors, which face away from it, stands for
+    // the geometry), a uniform sky of luminance L
+    // and a glowing ground of albedo rho_g: L_g = rho_g E_h / pi = rho_g L, and a vertical sensor
+    // sees half of each hemisphere: E = pi L / 2 + pi L_g / 2 = pi L (1 + rho_g) / 2. Facing up,
+    // it sees the sky alone: pi L. Every strategy emits the ground's light.
+    const double L = 1000.0, rhoG = 0.3;
+    test::SceneBuilder b;
+    b.add("speck", {{{0, 0, -0.5f}, {0.01f, 0, -0.5f}, {0, 0.01f, -0.5f}}}, b.material("black", glm::vec3(0.0f)));
+    b.uniformSky(L);
+    b.camera({0, 3, 4}, {0, 0, 0}, {0, 1, 0}, 40.0);
+    Scene scene = b.build();
+    scene.sky.groundAlbedo = rhoG;
+    SensorSet wall;
+    addMeshSensor(wall, "wall", "node", "test wall", rect({-1, 0.5f, 0}, {2, 0, 0}, {0, 2, 0}), 0.5);
+    const SensorSet up = horizontalSensor(1.0f);
+    for (const EmissionMethod m : {EmissionMethod::Uniform, EmissionMethod::Adaptive}) {
+        const SensorRun v = renderSensors(*ctx, scene, wall, 4u << 20, m);
+        expectGridMean(v, wall, M_PI * L * (1.0 + rhoG) / 2.0, 0.01, cat("ground glow, vertical, ", methodName(m)).c_str());
+    }
+    const SensorRun h = renderSensors(*ctx, scene, up, 4u << 20);
+    expectGridMean(h, up, M_PI * L, 0.01, "ground glow, horizontal facing up");
 }
 
 // A black 2 x 2 x 1.2 m room whose ceiling has a 1 x 1 m opening (marked as a portal pane of

@@ -121,7 +121,7 @@ TestRender renderScene(ocl::Context& ctx, const Scene& scene, int width, int hei
                        const std::function<void(RenderSettings&)>& tweak)
 {
     TestRender t;
-    t.sky = buildSky(scene.sky);
+    t.sky = buildSky(scene);
     RenderSettings s;
     s.paths = paths;
     s.batches = 16;
