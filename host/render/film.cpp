@@ -15,6 +15,8 @@ Film::Film(ocl::Context& ctx, int width, int height, double referenceLuminance_c
       accum_(ctx.buffer(CL_MEM_READ_WRITE, pixels() * kWordsPerPixel * 8, "pixel accumulators")),
       camera_(ctx.buffer(CL_MEM_READ_WRITE, pixels() * 16, "camera-pass image"))
 {
+    // Zero until the camera pass writes it: a camera that sees nothing (no image) never does.
+    ctx.queue().enqueueFillBuffer(camera_, cl_float(0), 0, pixels() * 16);
 }
 
 void Film::clear()

@@ -36,6 +36,7 @@
 #include "io/sensor_pictures.h"
 #include "sensor/sensor_options.h"
 #include "sensor/sensor_report.h"
+#include "sensor/sensor_smoothing.h"
 #include "sky/sky_spec.h"
 #include "sky/solar_position.h"
 #include "util/error.h"
@@ -189,6 +190,9 @@ int runRender(const RenderOptions& opt)
     // The sensors: the scene's marked nodes, the work plane, the points files (DESIGN.md §8).
     const SensorSet sensors = buildSensors(opt.sensors, scene);
     scene.bounds.grow(sensorBounds(sensors));  // light is emitted where every sensor sees it
+    if (opt.sensors.smoothing_m && sensors.empty())
+        throw Error(cat("--sensor-smoothing smooths sensors, and ", printable(scene.source),
+                        " has none: give --sensor-points FILE or --work-plane NODE, or mark a node extras.sensor"));
     if (noImage && sensors.empty())
         throw Error(cat("--no-image renders sensors alone, and ", printable(scene.source),
                         " has none: give --sensor-points FILE or --work-plane NODE, or mark a node extras.sensor"));
@@ -339,9 +343,17 @@ int runRender(const RenderOptions& opt)
         for (double v : r.sensors->mean())
             if (!std::isfinite(v))
                 throw Error("internal error: a sensor cell holds a non-finite value");
-        const std::string csv = sensorCsv(sensors, *r.sensors, df);
+        // --sensor-smoothing: every batch's cells through the same local linear fit, so each
+        // reported cell keeps its batch spread (sensor/sensor_smoothing.h)
+        std::optional<SensorStatistics> smoothed;
+        if (opt.sensors.smoothing_m) {
+            const SensorSmoother smoother(sensors, *opt.sensors.smoothing_m);
+            smoothed = r.sensors->mapped([&](const std::vector<double>& v) { return smoother.apply(v); });
+        }
+        const SensorStatistics& shown = smoothed ? *smoothed : *r.sensors;
+        const std::string csv = sensorCsv(sensors, shown, df);
         outputs.add(sensorCsvPath, csv);
-        sensorJson = sensorSummary(sensors, *r.sensors, df);
+        sensorJson = sensorSummary(sensors, shown, df);
         // the plans: the daylight factor in a DF study, else the illuminance, on one linear scale
         const SensorFile file = parseSensorCsv(csv, sensorCsvPath);
         std::vector<double> values;
@@ -436,6 +448,7 @@ int runRender(const RenderOptions& opt)
     }
     j["regions"] = regionsJson;
     j["sensors"] = sensorJson;
+    j["sensor_smoothing_m"] = opt.sensors.smoothing_m ? nlohmann::json(*opt.sensors.smoothing_m) : nlohmann::json(nullptr);
     j["emission"] = r.emission;
     j["progress"] = progress;
     j["counters"] = {{"bad_contributions", n.badContributions},

@@ -18,6 +18,8 @@ void addSensorOptions(CLI::App* r, SensorOptions* o)
     r->add_option("--work-plane", o->workPlane, "A sensor grid over the floors of this node");
     r->add_option("--work-plane-height", o->workPlaneHeight_m, "Its height above them, m (default 0.8)");
     r->add_option("--sensor-spacing", o->spacing_m, "Its cells' side, m (default 0.25)");
+    r->add_option("--sensor-smoothing", o->smoothing_m,
+                  "Report each cell by a local linear fit over the cells within this radius, m (default: off)");
     r->add_flag("--no-image", o->noImage, "Render the sensors alone: no image, no camera needed");
     r->add_flag("--daylight-factor", o->daylightFactor,
                 "Daylight-factor study: CIE overcast sky, no sun; DF per sensor cell");
@@ -33,6 +35,7 @@ void validateSensorOptions(SensorOptions& o, SkySunOptions& skySun)
     };
     side(o.sensorSize_m, "--sensor-size");
     side(o.spacing_m, "--sensor-spacing");
+    side(o.smoothing_m, "--sensor-smoothing");
     if (o.workPlaneHeight_m && (!std::isfinite(*o.workPlaneHeight_m) || std::abs(*o.workPlaneHeight_m) > 1e4))
         throw Error(cat("--work-plane-height ", *o.workPlaneHeight_m, ": must be a finite height in metres, at most 10 km"));
     if (o.workPlane && o.workPlane->empty())

@@ -4,6 +4,8 @@
 //   --work-plane NODE           a work plane over the floors of the node NODE
 //   --work-plane-height M       ... this high above them (default 0.8 m)
 //   --sensor-spacing M          ... cells of this side (default 0.25 m)
+//   --sensor-smoothing R        report each cell by a local linear fit over the cells within R m
+//                               (sensor/sensor_smoothing.h; off by default)
 //   --no-image                  render the sensors alone (no camera, no image files)
 //   --daylight-factor           a daylight-factor study: the CIE overcast sky (type 1) of 10,000 lux
 //                               and no sun, unless --sky-lux says otherwise; DF = E / E_outside
@@ -33,6 +35,7 @@ struct SensorOptions {
     std::optional<std::string> workPlane;
     std::optional<double> workPlaneHeight_m;
     std::optional<double> spacing_m;
+    std::optional<double> smoothing_m;
     bool noImage = false;
     bool daylightFactor = false;
     std::optional<double> dfThreshold_pct;

@@ -68,6 +68,14 @@ SensorStatistics::Estimate SensorStatistics::jackknife(const std::function<doubl
     return e;
 }
 
+SensorStatistics SensorStatistics::mapped(const std::function<std::vector<double>(const std::vector<double>&)>& f) const
+{
+    SensorStatistics out(cells_);
+    for (std::size_t b = 0; b < batches_.size(); ++b)
+        out.add(f(std::vector<double>(batches_[b].begin(), batches_[b].end())), weights_[b]);
+    return out;
+}
+
 void SensorStatistics::save(StateWriter& w) const
 {
     w.u64("sensors.cells", cells_);

@@ -33,6 +33,10 @@ public:
     // f of the cells' means, and its jackknife standard error (0 with fewer than two batches).
     Estimate jackknife(const std::function<double(const std::vector<double>&)>& f) const;
 
+    // The statistics of f(batch) for every batch, same weights: a linear f (a smoothing) keeps
+    // each output's standard error from the batches' spread.
+    SensorStatistics mapped(const std::function<std::vector<double>(const std::vector<double>&)>& f) const;
+
     void save(StateWriter& w) const;
     void load(StateReader& r);
 

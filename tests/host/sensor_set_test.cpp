@@ -6,10 +6,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <random>
 
 #include "sensor/device_sensors.h"
 #include "sensor/points_file.h"
 #include "sensor/sensor_set.h"
+#include "sensor/sensor_smoothing.h"
 #include "sensor/sensor_stats.h"
 #include "support/gltf_writer.h"
 #include "util/error.h"
@@ -161,6 +163,56 @@ TEST(SensorStatistics, TheJackknifeOfAMeanIsItsStandardError)
     EXPECT_NEAR(e.value, m, 1e-12);
     EXPECT_NEAR(e.stdErr, se, 1e-6);
     EXPECT_NEAR(s.stdErr()[0], std::sqrt(5.0 / 3.0 / 4.0), 1e-6);  // cell 0: 1, 2, 0, 3 about 1.5
+}
+
+}  // namespace
+}  // namespace fen
+
+namespace fen {
+namespace {
+
+TEST(SensorSmoothing, KeepsLinearFieldsAndCutsNoise)
+{
+    // A 2 x 1.5 m grid of 5 cm cells: a constant field stays constant everywhere, a linear one
+    // stays linear wherever the cell's neighbourhood is balanced (the interior), and independent
+    // noise of variance s^2 leaves about s^2 / (cells in the fit) in the interior.
+    SensorSet set;
+    addMeshSensor(set, "g", "node", "test", square({0, 1, 1.5f}, {2, 0, 0}, {0, 0, -1.5f}), 0.05);
+    ASSERT_EQ(set.cells.size(), 1200u);
+    const SensorSmoother s(set, 0.2);
+    EXPECT_GT(s.meanNeighbours(), 20.0);
+    std::vector<double> flat(set.cells.size(), 7.0), lin(set.cells.size());
+    for (std::size_t c = 0; c < lin.size(); ++c)
+        lin[c] = 100.0 + 30.0 * set.cells[c].position.x - 50.0 * set.cells[c].position.z;
+    const auto f = s.apply(flat), l = s.apply(lin);
+    std::size_t interior = 0;
+    for (std::size_t c = 0; c < lin.size(); ++c) {
+        EXPECT_NEAR(f[c], 7.0, 1e-9);
+        const glm::dvec3 p = set.cells[c].position;
+        if (p.x > 0.25 && p.x < 1.75 && p.z > 0.25 && p.z < 1.25) {
+            ++interior;
+            EXPECT_NEAR(l[c], lin[c], 1e-9) << c;
+        }
+    }
+    EXPECT_GT(interior, 400u);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0.0, 1.0);
+    double var = 0.0;
+    std::size_t n = 0;
+    for (int rep = 0; rep < 20; ++rep) {
+        std::vector<double> x(set.cells.size());
+        for (double& v : x)
+            v = noise(rng);
+        const auto y = s.apply(x);
+        for (std::size_t c = 0; c < y.size(); ++c) {
+            const glm::dvec3 p = set.cells[c].position;
+            if (p.x > 0.25 && p.x < 1.75 && p.z > 0.25 && p.z < 1.25) {
+                var += y[c] * y[c];
+                ++n;
+            }
+        }
+    }
+    EXPECT_LT(var / static_cast<double>(n), 0.15);  // from 1: at least 6.7x less variance
 }
 
 }  // namespace
