@@ -67,7 +67,7 @@ RUNGS = {
     "inner_room": [(4, 1024, 1e-3, None), (8, 4096, 1e-4, None), (16, 4096, 2e-5, None),
                    (64, 16384, 1e-5, None), (64, 65536, 1e-6, ("inner room",))],
 }
-STUDY_STEP = {"room": 97, "inner_room": 211}
+STUDY_STEP = {"room": 97, "inner_room": 317}
 CHECK_RUNG = (16, 4096, 2e-5)  # settings of the model-difference checks (compared at equal settings)
 
 # Regions (glTF frame): name -> predicate on (x, y, z).
@@ -79,8 +79,8 @@ REGIONS = {
 # region, in file order).
 FINAL = {
     "room": {"room": ((64, 16384, 1e-5), 10)},
-    "inner_room": {"outer room": ((64, 16384, 1e-5), 24),
-                   "inner room": ((64, 65536, 1e-6), 150)},
+    "inner_room": {"outer room": ((64, 16384, 1e-5), 48),
+                   "inner room": ((64, 65536, 1e-6), 300)},
 }
 
 W_RAD = gltf_to_rad.RADIANCE_WEIGHTS
@@ -219,9 +219,7 @@ def stage_prepare(scene, p, data):
     dropped = gltf_to_rad.write_open_gltf(p["gltf"], doc, p["open_gltf"])
     make_octree(p["rad"], p["oct"])
     pts, winfo = workplane_points.workplane(p["gltf"])
-    with open(p["pts"], "w") as f:
-        for x, y, z in pts:
-            f.write("%.6f %.6f %.6f 0 1 0\n" % (x, y, z))
+    workplane_points.write_points(p["pts"], pts)
     version = subprocess.run(["rtrace", "-version"], capture_output=True, text=True).stdout.strip()
     try:
         import importlib.metadata as md

@@ -67,6 +67,21 @@ def workplane(scene, floor="floor", height=0.8, spacing=0.036, margin=0.0):
                  "nx": len(gx), "nz": len(gz)}
 
 
+def fmt_coord(v):
+    """Micrometre precision without trailing zeros (the lattices here fall on whole mm)."""
+    t = ("%.6f" % v).rstrip("0").rstrip(".")
+    return "0" if t in ("-0", "") else t
+
+
+def write_points(path, pts):
+    """Writes (x, y, z) points with the normal 0 1 0 (through a temporary file, then renamed)."""
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        for x, y, z in pts:
+            f.write("%s %s %s 0 1 0\n" % (fmt_coord(x), fmt_coord(y), fmt_coord(z)))
+    os.replace(tmp, path)
+
+
 def read_points(path):
     """[(x, y, z, dx, dy, dz)] of a points file."""
     pts = []
@@ -90,9 +105,7 @@ def main():
     a = ap.parse_args()
     pts, info = workplane(a.scene, a.floor, a.height, a.spacing, a.margin)
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    with open(a.out, "w") as f:
-        for x, y, z in pts:
-            f.write("%.6f %.6f %.6f 0 1 0\n" % (x, y, z))
+    write_points(a.out, pts)
     print("%s: %d points (%d x %d lattice, spacing %g m, %g m above the floor at y = %g)"
           % (a.out, len(pts), info["nx"], info["nz"], a.spacing, a.height, info["y"] - a.height))
     return 0
