@@ -347,7 +347,7 @@ int runRender(const RenderOptions& opt)
         // reported cell keeps its batch spread (sensor/sensor_smoothing.h)
         std::optional<SensorStatistics> smoothed;
         if (opt.sensors.smoothing_m) {
-            const SensorSmoother smoother(sensors, *opt.sensors.smoothing_m);
+            const SensorSmoother smoother(sensors, *opt.sensors.smoothing_m, &scene);
             smoothed = r.sensors->mapped([&](const std::vector<double>& v) { return smoother.apply(v); });
         }
         const SensorStatistics& shown = smoothed ? *smoothed : *r.sensors;

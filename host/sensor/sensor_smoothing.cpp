@@ -4,16 +4,38 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <tuple>
 
+#include "bvh_build.h"
+#include "bvh_flat.h"
+#include "bvh_traverse_ref.h"
 #include "util/error.h"
 
 namespace fen {
 
-SensorSmoother::SensorSmoother(const SensorSet& set, double radius_m) : radius_(radius_m)
+SensorSmoother::SensorSmoother(const SensorSet& set, double radius_m, const Scene* scene) : radius_(radius_m)
 {
     if (!(radius_m > 0.0) || !std::isfinite(radius_m))
         throw Error(cat("--sensor-smoothing ", radius_m, ": must be a radius in metres, more than 0"));
+    // What separates cells: the scene's triangles, in the CPU reference traversal.
+    std::optional<FlatBvh> bvh;
+    if (scene && !scene->triangles.empty())
+        bvh = flattenBvh(buildBinnedSah(scene->triangles), scene->triangles, 2);
+    const auto sees = [&](const glm::dvec3& a, const glm::dvec3& b) {
+        if (!bvh)
+            return true;
+        const glm::dvec3 d = b - a;
+        const double len = glm::length(d);
+        if (!(len > 0.0))
+            return true;
+        RefRay ray;
+        ray.org = glm::vec3(a);
+        ray.dir = glm::vec3(d / len);
+        ray.tmin = 0.0f;
+        ray.tmax = static_cast<float>(len);
+        return !traceAnyRef(*bvh, ray);
+    };
     const std::size_t n = set.cells.size();
     // Cells by sensor and plane, then by a 2D hash of R-sized buckets in the plane.
     using PlaneKey = std::tuple<std::uint32_t, long long, long long, long long, long long>;
@@ -57,7 +79,7 @@ SensorSmoother::SensorSmoother(const SensorSet& set, double radius_m) : radius_(
                         const double dist = glm::length(delta);
                         if (m != k)
                             nearest = std::min(nearest, dist);
-                        if (dist < radius_m) {
+                        if (dist < radius_m && (m == k || sees(set.cells[members[k]].position, set.cells[members[m]].position))) {
                             const double t = 1.0 - std::pow(dist / radius_m, 3.0);
                             within.emplace_back(m, delta);
                             centroid += t * t * t * delta;

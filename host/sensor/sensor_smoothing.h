@@ -4,8 +4,10 @@
 // same sensor and plane whose centres lie within R of it. A linear operator on the cells, applied
 // to every batch alike, so each smoothed cell keeps a standard error from its batches' spread.
 // What it trades: noise for a bias of about R^2/10 times the field's curvature -- none where the
-// illuminance varies linearly, and, unlike a larger cell, no leak across a wall (only cells on the
-// grid take part) and no first-order bias at the grid's edges (the fit is linear, not a mean). Off
+// illuminance varies linearly, and, unlike a larger cell, no leak across a wall: only cells of the
+// grid take part, and only those the cell sees (the segment between their centres meets no
+// triangle of the scene: one grid may span two rooms, a wall between them). No first-order bias
+// at the grid's edges either: the fit is linear, not a mean, and narrows across an edge. Off
 // by default: a cell's own value is unbiased. Where fewer than three cells span a plane around a
 // cell, the fit falls back to the weighted mean of what there is.
 #pragma once
@@ -19,7 +21,8 @@ namespace fen {
 
 class SensorSmoother {
 public:
-    SensorSmoother(const SensorSet& set, double radius_m);
+    // `scene`: the geometry that separates cells (null: none does).
+    SensorSmoother(const SensorSet& set, double radius_m, const Scene* scene);
     double radius() const { return radius_; }
     // The smoothed cells: out[c] = sum over its neighbours n of weight(c, n) in[n].
     std::vector<double> apply(const std::vector<double>& in) const;

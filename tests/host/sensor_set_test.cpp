@@ -179,7 +179,7 @@ TEST(SensorSmoothing, KeepsLinearFieldsAndCutsNoise)
     SensorSet set;
     addMeshSensor(set, "g", "node", "test", square({0, 1, 1.5f}, {2, 0, 0}, {0, 0, -1.5f}), 0.05);
     ASSERT_EQ(set.cells.size(), 1200u);
-    const SensorSmoother s(set, 0.2);
+    const SensorSmoother s(set, 0.2, nullptr);
     EXPECT_GT(s.meanNeighbours(), 20.0);
     std::vector<double> flat(set.cells.size(), 7.0), lin(set.cells.size());
     for (std::size_t c = 0; c < lin.size(); ++c)
@@ -213,6 +213,35 @@ TEST(SensorSmoothing, KeepsLinearFieldsAndCutsNoise)
         }
     }
     EXPECT_LT(var / static_cast<double>(n), 0.15);  // from 1: at least 6.7x less variance
+}
+
+}  // namespace
+}  // namespace fen
+
+namespace fen {
+namespace {
+
+TEST(SensorSmoothing, NeverReachesAcrossAWall)
+{
+    // One grid over two rooms, a wall at x = 1 between them: dark on one side, bright on the
+    // other, and no cell's fit may take a cell it cannot see.
+    SensorSet set;
+    addMeshSensor(set, "g", "node", "test", square({0, 1, 1}, {2, 0, 0}, {0, 0, -1}), 0.05);
+    Scene scene;
+    scene.triangles = square({1, 0, 2}, {0, 0, -3}, {0, 3, 0});  // the plane x = 1
+    std::vector<double> lux(set.cells.size());
+    for (std::size_t c = 0; c < lux.size(); ++c)
+        lux[c] = set.cells[c].position.x < 1.0 ? 0.0 : 1000.0;
+    const auto walled = SensorSmoother(set, 0.2, &scene).apply(lux);
+    const auto open = SensorSmoother(set, 0.2, nullptr).apply(lux);
+    double leakWalled = 0.0, leakOpen = 0.0;
+    for (std::size_t c = 0; c < lux.size(); ++c)
+        if (set.cells[c].position.x < 1.0) {
+            leakWalled = std::max(leakWalled, std::abs(walled[c]));
+            leakOpen = std::max(leakOpen, std::abs(open[c]));
+        }
+    EXPECT_EQ(leakWalled, 0.0);
+    EXPECT_GT(leakOpen, 10.0) << "without the wall the fit does reach across: the test can fail";
 }
 
 }  // namespace
