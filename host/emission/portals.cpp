@@ -239,12 +239,7 @@ PortalSet collectPortals(const Scene& scene, const std::string& override)
                     found = true;
                 }
             if (!found) {
-                std::set<std::string> withGeometry;
-                for (std::uint32_t n : scene.triangleNode)
-                    withGeometry.insert(scene.nodeNames[n].empty() ? cat("node ", n) : scene.nodeNames[n]);
-                std::string names;
-                for (const auto& s : withGeometry)
-                    names += (names.empty() ? "'" : ", '") + s + "'";
+                const std::string names = nodesWithGeometry(scene);
                 throw Error(cat("--portals: no node named '", printable(name, 60), "' in ", printable(scene.source),
                                 " (nodes with geometry: ", names, ")"));
             }

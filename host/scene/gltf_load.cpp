@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <set>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -952,6 +953,21 @@ const CameraSpec& findCamera(const Scene& scene, const std::string& name)
     for (const auto& c : scene.cameras)
         names += (names.empty() ? "'" : ", '") + printable(c.nodeName.empty() ? c.cameraName : c.nodeName) + "'";
     throw Error(cat(scene.source, ": no camera named '", printable(name), "' (cameras: ", printable(names, 2000), ")"));
+}
+
+}  // namespace fen
+
+namespace fen {
+
+std::string nodesWithGeometry(const Scene& scene)
+{
+    std::set<std::string> withGeometry;
+    for (std::uint32_t n : scene.triangleNode)
+        withGeometry.insert(scene.nodeNames[n].empty() ? cat("node ", n) : scene.nodeNames[n]);
+    std::string names;
+    for (const auto& s : withGeometry)
+        names += (names.empty() ? "'" : ", '") + s + "'";
+    return names;
 }
 
 }  // namespace fen

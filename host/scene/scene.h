@@ -104,4 +104,9 @@ struct Scene {
     Aabb bounds;
 };
 
+// The names of the nodes that carry triangles, sorted, quoted and comma-separated ("node N" for an
+// unnamed one): what an error about a node name that is not there lists (gltf_load.cpp).
+std::string nodesWithGeometry(const Scene& scene);
+
 }  // namespace fen
+

@@ -170,12 +170,7 @@ void addWorkPlane(SensorSet& set, const Scene& scene, const std::string& node, d
         if (scene.nodeNames[n] == node)
             chosen[n] = found = true;
     if (!found) {
-        std::set<std::string> withGeometry;
-        for (std::uint32_t n : scene.triangleNode)
-            withGeometry.insert(scene.nodeNames[n].empty() ? cat("node ", n) : scene.nodeNames[n]);
-        std::string names;
-        for (const auto& s : withGeometry)
-            names += (names.empty() ? "'" : ", '") + s + "'";
+        const std::string names = nodesWithGeometry(scene);
         throw Error(cat(source, ": no node of that name in ", printable(scene.source), " (nodes with geometry: ",
                         names, ")"));
     }
