@@ -510,11 +510,23 @@ int runRender(const RenderOptions& opt)
         }
         std::printf("\n");
     }
-    if (noImage)
-        std::printf("wrote %s%s\n", jsonPath.c_str(), r.sensors ? (" and " + sensorCsvPath).c_str() : "");
-    else
-        std::printf("also wrote %s, %s and %s%s\n", pngPath.c_str(), jsonPath.c_str(), noisePath.c_str(),
-                    r.sensors ? (", " + sensorCsvPath).c_str() : "");
+    // Every file written besides the EXR, in one line.
+    std::vector<std::string> wrote;
+    if (!noImage)
+        wrote = {pngPath, noisePath};
+    if (reference)
+        wrote.push_back(errorPath);
+    if (opt.sensors.falseColor)
+        wrote.push_back(falsePath);
+    if (r.sensors) {
+        wrote.push_back(sensorCsvPath);
+        wrote.insert(wrote.end(), sensorPngPaths.begin(), sensorPngPaths.end());
+    }
+    wrote.push_back(jsonPath);
+    std::string list;
+    for (std::size_t i = 0; i < wrote.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == wrote.size() ? " and " : ", ") + wrote[i];
+    std::printf("%s %s\n", noImage ? "wrote" : "also wrote", list.c_str());
     // What the strategy wants the user to know (e.g. portal emission's measured blind spot).
     for (const std::string& w : r.emissionWarnings)
         std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
