@@ -65,13 +65,14 @@ kernel void shade_paths(global const RenderParams* params, global PathState* pat
                         global const DevSensorInfo* sensor_info, global const DevSensorPlane* sensor_planes,
                         global const DevSensorCell* sensor_cells, global const uint* sensor_bucket_start,
                         global const uint* sensor_bucket_cells, volatile global ulong* sensor_accum,
-                        volatile global ulong* sensor_cell_stats, volatile global ulong* counters)
+                        volatile global ulong* sensor_cell_stats, global const float* sensor_steer,
+                        volatile global ulong* counters)
 {
     local uint alive_in_group;
     const Guide guide = {guide_params, guide_tables};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
     const Sensors sensors = {sensor_info, sensor_planes, sensor_cells, sensor_bucket_start, sensor_bucket_cells,
-                             sensor_accum, sensor_cell_stats, params->fixed_scale, params->stats_scale};
+                             sensor_accum, sensor_cell_stats, sensor_steer, params->fixed_scale, params->stats_scale};
     const uint alive = shade_one(get_global_id(0), params, &guide, paths, splits, hits, &sm, cam, connections,
                                  &sensors, counters);
     group_count_add(counters + FEN_CTR_ALIVE, alive, &alive_in_group);

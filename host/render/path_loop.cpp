@@ -106,7 +106,8 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
                                          &film.accumulators(), ek.cellStats, pixelScale,
                                          &guide->params(), &guide->tables(), &guide->stats(),
                                          &sensors.info(), &sensors.planes(), &sensors.cellTable(),
-                                         &sensors.bucketStart(), &sensors.bucketCells(), &sensors.accumulators()};
+                                         &sensors.bucketStart(), &sensors.bucketCells(), &sensors.accumulators(),
+                                         &sensors.steer()};
         for (const cl::Buffer* buf : fusedArgs)
             fused_.setArg(a++, *buf);
         strategy.bindEmitArgs(fused_, a);  // the strategy's arguments last; checks the arity
@@ -118,7 +119,7 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
                        scene.primUv(), scene.texels(), cameraBuf_, connections_, guide->params(), guide->tables(),
                        sensors.info(), sensors.planes(), sensors.cellTable(), sensors.bucketStart(),
-                       sensors.bucketCells(), sensors.accumulators(), *ek.cellStats, counters_);
+                       sensors.bucketCells(), sensors.accumulators(), *ek.cellStats, sensors.steer(), counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), film.accumulators(), *ek.cellStats, *pixelScale, guide->stats(),
                        counters_);

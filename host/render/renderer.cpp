@@ -17,6 +17,7 @@
 #include "render/device_scene.h"
 #include "render/film.h"
 #include "sensor/device_sensors.h"
+#include "sensor/sensor_smoothing.h"
 #include "shared/fen_rng.h"
 #include "trace/device_bvh.h"
 #include "util/error.h"
@@ -64,6 +65,9 @@ struct Renderer::Impl {
     std::uint64_t sceneHash_ = 0;  // only when checkpointing or resuming
     bool steersByPixel = false;    // the strategy wants the image so far (imageEstimate)
     std::optional<SensorStatistics> sensorStats;  // the counted batches' sensor cells, with sensors
+    // With no image and a relative target, the sensors steer: each cell's illuminance so far,
+    // smoothed over its neighbours (so that one lucky path does not swing it), sets its factor.
+    std::unique_ptr<SensorSmoother> steerSmoother;
 
     // Progress reporting across batches.
     std::uint64_t pathsDone = 0, pathsTotal = 0, raysDone = 0;
@@ -104,6 +108,13 @@ struct Renderer::Impl {
         p.fixed_scale = film.fixedScale();
         const EmissionKernels ek = strategy->kernels();
         steersByPixel = ek.statsPixelScale != nullptr;
+        if (st.noImage && sensors.any() && steersByPixel) {
+            std::vector<double> sides;
+            for (const SensorCell& cell : st.sensors->cells)
+                sides.push_back(cell.side_m);
+            std::nth_element(sides.begin(), sides.begin() + static_cast<std::ptrdiff_t>(sides.size() / 2), sides.end());
+            steerSmoother = std::make_unique<SensorSmoother>(*st.sensors, 4.0 * sides[sides.size() / 2], &s);
+        }
         p.stats_scale = static_cast<float>(ek.statsScale);
         p.sky_theta_nodes = skyTables.thetaNodes;
         p.sky_phi_nodes = skyTables.phiNodes;
@@ -148,6 +159,23 @@ struct Renderer::Impl {
     {
         if (!steersByPixel)
             return;
+        if (steerSmoother) {
+            // The sensors' relative target: a cell counts as its illuminance times the grid's
+            // mean over its own (smoothed, floored at 10^-4 of the mean), as a pixel counts
+            // relative to its tile's brightness (emission/adaptive_strategy.cpp).
+            const std::vector<double> raw = sensorStats && sensorStats->batches() > 0 ? sensorStats->mean()
+                                                                                   : sensors.read(std::max<std::uint64_t>(paths, 1));
+            const std::vector<double> e = steerSmoother->apply(raw);
+            double mean = 0.0;
+            for (double v : e)
+                mean += v / static_cast<double>(e.size());
+            if (mean > 0.0) {
+                std::vector<float> steer(e.size());
+                for (std::size_t c = 0; c < e.size(); ++c)
+                    steer[c] = static_cast<float>(mean / std::max(e[c], 1e-4 * mean));
+                sensors.setSteer(steer);
+            }
+        }
         std::vector<double> Y(film.pixels());
         if (stats && stats->batches() > 0) {
             const Image m = stats->mean();

@@ -125,7 +125,15 @@ void DeviceSensors::upload(ocl::Context& ctx, const SensorTables& t)
     bucketStart_ = make(t.bucketStart, "sensor buckets");
     bucketCells_ = make(t.bucketCells, "sensor bucket cells");
     accum_ = ctx.buffer(CL_MEM_READ_WRITE, std::max<std::size_t>(cells_, 1) * 16, "sensor accumulators");
+    const std::vector<float> ones(std::max<std::size_t>(cells_, 1), 1.0f);
+    steer_ = ctx.buffer(CL_MEM_READ_ONLY, ones.size() * 4, "sensor steering", ones.data());
     clear();
+}
+
+void DeviceSensors::setSteer(const std::vector<float>& perCell)
+{
+    if (perCell.size() == cells_ && cells_ > 0)
+        ctx_.queue().enqueueWriteBuffer(steer_, CL_TRUE, 0, cells_ * 4, perCell.data());
 }
 
 void DeviceSensors::clear()

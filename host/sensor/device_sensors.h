@@ -42,6 +42,10 @@ public:
     const cl::Buffer& bucketStart() const { return bucketStart_; }
     const cl::Buffer& bucketCells() const { return bucketCells_; }
     const cl::Buffer& accumulators() const { return accum_; }
+    // Each cell's factor on what it adds to a learning strategy's statistics (lib/sensor.h): 1
+    // (the absolute target) until setSteer() says otherwise.
+    const cl::Buffer& steer() const { return steer_; }
+    void setSteer(const std::vector<float>& perCell);
 
     void clear();
     // Each cell's illuminance over `paths` paths (lux): accumulators / (scale x paths).
@@ -52,7 +56,7 @@ private:
     ocl::Context& ctx_;
     std::size_t cells_ = 0;
     float fixedScale_ = 1.0f;
-    cl::Buffer info_, planes_, cellTable_, bucketStart_, bucketCells_, accum_;
+    cl::Buffer info_, planes_, cellTable_, bucketStart_, bucketCells_, accum_, steer_;
 };
 
 }  // namespace fen

@@ -36,11 +36,11 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
                         global const DevSensorInfo* sensor_info, global const DevSensorPlane* sensor_planes,
                         global const DevSensorCell* sensor_cells, global const uint* sensor_bucket_start,
                         global const uint* sensor_bucket_cells, volatile global ulong* sensor_accum,
-                        FEN_EMITTER_ARGS)
+                        global const float* sensor_steer, FEN_EMITTER_ARGS)
 {
     /* the sensors' statistics go to the strategy's own (FEN_SENSOR_STATS) */
     const Sensors sensors = {sensor_info, sensor_planes, sensor_cells, sensor_bucket_start, sensor_bucket_cells,
-                             sensor_accum, cell_stats, params->fixed_scale, params->stats_scale};
+                             sensor_accum, cell_stats, sensor_steer, params->fixed_scale, params->stats_scale};
     const FEN_EMITTER_TYPE emitter = FEN_EMITTER_MAKE;
     const Guide guide = {guide_params, guide_tables};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};

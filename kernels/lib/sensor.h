@@ -14,8 +14,10 @@
  * Built with -DFEN_SENSOR_STATS (a learning strategy in a render with no image), each crossing's
  * illuminance over pi -- a luminance, the unit the pixels' statistics are kept in -- also goes to
  * the emission cell the path started in (lib/accumulate.h cell_stats_add), so that the strategy
- * learns where the light the sensors see comes from: the absolute target, the sum of the cells'
- * variances, which is what a grid's RMS error measures.
+ * learns where the light the sensors see comes from: by default the absolute target, the sum of
+ * the cells' variances, which is what a grid's RMS error measures; with the strategy's relative
+ * target each cell's share is scaled by its steer factor (about the grid's mean over the cell's
+ * own illuminance: render/renderer.cpp), so that a dim room counts as much as a bright one.
  */
 #ifndef FEN_SENSOR_LIB_H
 #define FEN_SENSOR_LIB_H
@@ -32,6 +34,7 @@ typedef struct {
     global const uint* bucket_cells;
     volatile global ulong* accum;  /* 2 words per cell */
     volatile global ulong* cell_stats;  /* the strategy's statistics (FEN_SENSOR_STATS only) */
+    global const float* steer;          /* per cell: the factor on what it adds to them (1: absolute) */
     float stats_fixed_scale, stats_scale;
 } Sensors;
 
@@ -70,7 +73,7 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
                 if (!fixed_add128(s->accum + 2 * (ulong)c, flux * cell.inv_area * scale))
                     counter_add(counters, FEN_CTR_OVERFLOWS, 1);
 #ifdef FEN_SENSOR_STATS
-                const float l = flux * cell.inv_area * (1.0f / FEN_PI);
+                const float l = flux * cell.inv_area * (1.0f / FEN_PI) * s->steer[c];
                 cell_stats_add(s->cell_stats, as_uint(beta.w) & ~FEN_PART_ESTIMATE_ONLY, (float3)(l),
                                s->stats_fixed_scale, s->stats_scale, counters);
 #endif

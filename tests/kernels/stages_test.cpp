@@ -90,7 +90,7 @@ struct Stages {
                            ds.texels(), camBuf, conns,
                            noGuide.params(), noGuide.tables(), noSensors.info(), noSensors.planes(),
                            noSensors.cellTable(), noSensors.bucketStart(), noSensors.bucketCells(),
-                           noSensors.accumulators(), stats, counters);
+                           noSensors.accumulators(), stats, noSensors.steer(), counters);
         ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.primMaterial(),
                            ds.materials(), accum, stats, noScale, noGuide.stats(), counters);
         ocl::launch(ctx, isect, "intersect_paths", n);

@@ -293,6 +293,30 @@ TEST(Sensors, AdaptiveEmissionLearnsFromTheSensorsWhenThereIsNoImage)
     EXPECT_LT(seA, 0.7 * seU);
 }
 
+TEST(Sensors, TheRelativeTargetSteersBySensorsAndStaysUnbiased)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // --adaptive-target relative with no image: each cell's share of the statistics is scaled by
+    // the grid's mean over its own (smoothed) illuminance; every cell still within the chi-square.
+    const OpeningRoom room = openingRoom();
+    Scene scene = room.scene;
+    scene.bounds.grow(sensorBounds(room.set));
+    const auto t = test::renderScene(*ctx, scene, 32, 24, 4u << 20, {Roi{0, 0, 32, 24}}, 1, 1024,
+                                     [&](RenderSettings& st) {
+                                         st.sensors = &room.set;
+                                         st.noImage = true;
+                                         st.emission.method = EmissionMethod::Adaptive;
+                                         st.emission.adaptive.relativeTarget = true;
+                                     });
+    ASSERT_TRUE(t.result.sensors.has_value());
+    SensorRun run{t.result, t.result.sensors->mean(), t.result.sensors->stdErr()};
+    double sum = 0.0;
+    for (double e : room.expected)
+        sum += e;
+    expectGridMean(run, room.set, sum / 64.0, 0.01, "adaptive relative, floor under opening");
+    expectCells(run, room.expected, "adaptive relative, floor under opening");
+}
+
 TEST(Sensors, KernelFormsAddTheSameSums)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
