@@ -140,19 +140,21 @@ int runRender(const RenderOptions& opt)
         throw Error(cat("--out '", printable(opt.outPath), "' must name a file"));
     // PATH of PATH.exr: every output is PATH.something (with --no-image, --out may be PATH itself).
     const std::string base = namesExr ? opt.outPath.substr(0, opt.outPath.size() - 4) : opt.outPath;
-    const auto withExtension = [&](const std::string&, const std::string& ext) { return base + ext; };
+    const auto outputPath = [&](const std::string& ext) { return base + ext; };
     const EmissionSettings emission = opt.emission.settings();
     const std::string checkpointPath = opt.checkpointPath.value_or(""), resumePath = opt.resumePath.value_or("");
     const std::string referencePath = opt.referencePath.value_or("");
     // Every output's folder is created and proved writable, and no output is a folder, before a
     // long render rather than after it.
-    const std::string pngPath = withExtension(opt.outPath, ".png");
-    const std::string jsonPath = withExtension(opt.outPath, ".json");
-    const std::string noisePath = withExtension(opt.outPath, ".noise.exr");
-    const std::string errorPath = withExtension(opt.outPath, ".error.png");
-    const std::string sensorCsvPath = withExtension(opt.outPath, ".sensors.csv");
-    const std::string falsePath = withExtension(opt.outPath, ".falsecolor.png");
-    for (const std::string& p : {opt.outPath, pngPath, jsonPath, noisePath, errorPath, sensorCsvPath, falsePath})
+    const std::string pngPath = outputPath(".png");
+    const std::string jsonPath = outputPath(".json");
+    const std::string noisePath = outputPath(".noise.exr");
+    const std::string errorPath = outputPath(".error.png");
+    const std::string sensorCsvPath = outputPath(".sensors.csv");
+    const std::string falsePath = outputPath(".falsecolor.png");
+    // The outputs whose names --out alone decides (the sensors' pictures are named once they are known).
+    const std::vector<std::string> namedOutputs{opt.outPath, pngPath, jsonPath, noisePath, errorPath, sensorCsvPath, falsePath};
+    for (const std::string& p : namedOutputs)
         checkOutputPath(p, "--out");
     if (!checkpointPath.empty()) {
         checkOutputPath(checkpointPath, "--checkpoint");
@@ -174,12 +176,12 @@ int runRender(const RenderOptions& opt)
         inputs.emplace_back("the --reference image", referencePath);
         for (const std::string& f : opt.sensors.pointsFiles)
             inputs.emplace_back("a --sensor-points file", f);
-        for (const std::string& out : {opt.outPath, pngPath, jsonPath, noisePath, errorPath, sensorCsvPath, falsePath})
+        for (const std::string& out : namedOutputs)
             refuseOverwritingInputs(out, "--out", inputs);
         if (!checkpointPath.empty())
             refuseOverwritingInputs(checkpointPath, "--checkpoint", inputs);
         inputs = {{"the checkpoint to resume (--resume)", resumePath}};
-        for (const std::string& out : {opt.outPath, pngPath, jsonPath, noisePath, errorPath, sensorCsvPath, falsePath})
+        for (const std::string& out : namedOutputs)
             refuseOverwritingInputs(out, "--out", inputs);
     }
     const SkySunReport skySun = applySkySunOptions(opt.skySun, &scene);
@@ -190,16 +192,14 @@ int runRender(const RenderOptions& opt)
     // The sensors: the scene's marked nodes, the work plane, the points files (DESIGN.md §8).
     const SensorSet sensors = buildSensors(opt.sensors, scene);
     scene.bounds.grow(sensorBounds(sensors));  // light is emitted where every sensor sees it
-    if (opt.sensors.smoothing_m && sensors.empty())
-        throw Error(cat("--sensor-smoothing smooths sensors, and ", printable(scene.source),
-                        " has none: give --sensor-points FILE or --work-plane NODE, or mark a node extras.sensor"));
-    if (noImage && sensors.empty())
-        throw Error(cat("--no-image renders sensors alone, and ", printable(scene.source),
+    if (sensors.empty() && (noImage || opt.sensors.smoothing_m))
+        throw Error(cat(noImage ? "--no-image renders sensors alone" : "--sensor-smoothing smooths sensors", ", and ",
+                        printable(scene.source),
                         " has none: give --sensor-points FILE or --work-plane NODE, or mark a node extras.sensor"));
     // A false-colour plan per sensor plane (io/sensor_pictures.h): PATH.sensors.png for the first,
     // PATH.sensors-NAME.png for the others; named now, from the cells alone, so that the set of
     // outputs is claimed before rendering.
-    const std::string sensorPngPath = withExtension(opt.outPath, ".sensors.png");
+    const std::string sensorPngPath = outputPath(".sensors.png");
     std::vector<std::string> sensorPngPaths;
     if (!sensors.empty()) {
         const SensorStatistics zero(sensors.cells.size());
