@@ -100,6 +100,10 @@ double value(const std::vector<std::string>& fields, std::size_t column, const s
 
 }  // namespace
 
+namespace {
+SensorFile parseSensorCsv(const std::string& text, const std::string& path);
+}  // namespace
+
 SensorFile readSensorCsv(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);
@@ -112,6 +116,9 @@ SensorFile readSensorCsv(const std::string& path)
     return parseSensorCsv(buffer.str(), path);
 }
 
+namespace {
+
+// The file read as text; `path` names it in errors.
 SensorFile parseSensorCsv(const std::string& text, const std::string& path)
 {
     SensorFile file;
@@ -180,5 +187,7 @@ SensorFile parseSensorCsv(const std::string& text, const std::string& path)
         throw Error(cat(printable(path), ": no sensor cells (a header and no rows)"));
     return file;
 }
+
+}  // namespace
 
 }  // namespace fen

@@ -33,7 +33,5 @@ struct SensorFile {
 };
 
 SensorFile readSensorCsv(const std::string& path);
-// The same, from the file's text (`path` names it in errors): what a render has just written.
-SensorFile parseSensorCsv(const std::string& text, const std::string& path);
 
 }  // namespace fen

@@ -203,8 +203,7 @@ int runRender(const RenderOptions& opt)
     std::vector<std::string> sensorPngPaths;
     if (!sensors.empty()) {
         const SensorStatistics zero(sensors.cells.size());
-        sensorPngPaths = sensorPicturePaths(parseSensorCsv(sensorCsv(sensors, zero, std::nullopt), sensorCsvPath),
-                                            sensorPngPath);
+        sensorPngPaths = sensorPicturePaths(sensorRows(sensors, zero, std::nullopt, sensorCsvPath), sensorPngPath);
     }
     for (const std::string& p : sensorPngPaths)
         checkOutputPath(p, "--out");
@@ -351,11 +350,10 @@ int runRender(const RenderOptions& opt)
             smoothed = r.sensors->mapped([&](const std::vector<double>& v) { return smoother.apply(v); });
         }
         const SensorStatistics& shown = smoothed ? *smoothed : *r.sensors;
-        const std::string csv = sensorCsv(sensors, shown, df);
-        outputs.add(sensorCsvPath, csv);
+        const SensorFile file = sensorRows(sensors, shown, df, sensorCsvPath);
+        outputs.add(sensorCsvPath, sensorCsv(file));
         sensorJson = sensorSummary(sensors, shown, df);
         // the plans: the daylight factor in a DF study, else the illuminance, on one linear scale
-        const SensorFile file = parseSensorCsv(csv, sensorCsvPath);
         std::vector<double> values;
         for (const SensorRow& row : file.rows)
             values.push_back(df ? row.daylightFactor : row.illuminance);

@@ -48,32 +48,54 @@ void estimate(const SensorStatistics& stats, const std::function<double(const st
 
 }  // namespace
 
-std::string sensorCsv(const SensorSet& set, const SensorStatistics& stats, const std::optional<DaylightFactorSpec>& df)
+SensorFile sensorRows(const SensorSet& set, const SensorStatistics& stats, const std::optional<DaylightFactorSpec>& df,
+                      const std::string& path)
 {
     const std::vector<double> mean = stats.mean(), se = stats.stdErr();
-    std::string out = "sensor,cell,x_m,y_m,z_m,nx,ny,nz,area_m2,illuminance_lux,std_err_lux";
-    if (df)
-        out += ",daylight_factor_pct,daylight_factor_std_err_pct";
-    out += "\n";
+    SensorFile file;
+    file.path = path;
+    file.hasDaylightFactor = df.has_value();
     std::vector<std::size_t> index(set.sensors.size(), 0);
     for (std::size_t c = 0; c < set.cells.size(); ++c) {
         const SensorCell& cell = set.cells[c];
+        SensorRow r;
+        r.sensor = set.sensors[cell.sensor].name;
+        r.cell = std::to_string(index[cell.sensor]++);
+        r.x = cell.position.x, r.y = cell.position.y, r.z = cell.position.z;
+        r.nx = cell.normal.x, r.ny = cell.normal.y, r.nz = cell.normal.z;
+        r.area = cell.side_m * cell.side_m;
+        r.illuminance = mean[c];
+        r.illuminanceStdErr = se[c];
+        if (df) {
+            r.daylightFactor = 100.0 * mean[c] / df->outside_lux;
+            r.daylightFactorStdErr = 100.0 * se[c] / df->outside_lux;
+        }
+        r.line = static_cast<int>(c + 2);  // the header is line 1
+        file.rows.push_back(std::move(r));
+    }
+    return file;
+}
+
+std::string sensorCsv(const SensorFile& file)
+{
+    std::string out = "sensor,cell,x_m,y_m,z_m,nx,ny,nz,area_m2,illuminance_lux,std_err_lux";
+    if (file.hasDaylightFactor)
+        out += ",daylight_factor_pct,daylight_factor_std_err_pct";
+    out += "\n";
+    for (const SensorRow& r : file.rows) {
         // Names are quoted when they hold a comma or a quote (RFC 4180).
-        std::string name = set.sensors[cell.sensor].name;
+        std::string name = r.sensor;
         if (name.find_first_of(",\"\n\r") != std::string::npos) {
             std::string q = "\"";
             for (char ch : name)
                 q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
             name = q + "\"";
         }
-        out += name + "," + std::to_string(index[cell.sensor]++);
-        for (int k = 0; k < 3; ++k)
-            out += "," + num(cell.position[k]);
-        for (int k = 0; k < 3; ++k)
-            out += "," + num(cell.normal[k]);
-        out += "," + num(cell.side_m * cell.side_m) + "," + num(mean[c]) + "," + num(se[c]);
-        if (df)
-            out += "," + num(100.0 * mean[c] / df->outside_lux) + "," + num(100.0 * se[c] / df->outside_lux);
+        out += name + "," + r.cell;
+        for (double v : {r.x, r.y, r.z, r.nx, r.ny, r.nz, r.area, r.illuminance, r.illuminanceStdErr})
+            out += "," + num(v);
+        if (file.hasDaylightFactor)
+            out += "," + num(r.daylightFactor) + "," + num(r.daylightFactorStdErr);
         out += "\n";
     }
     return out;

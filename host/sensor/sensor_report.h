@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/sensor_csv.h"
 #include "sensor/sensor_set.h"
 #include "sensor/sensor_stats.h"
 
@@ -21,9 +22,13 @@ struct DaylightFactorSpec {
     double threshold_pct = 2.0;
 };
 
-// Columns: sensor,cell,x_m,y_m,z_m,nx,ny,nz,area_m2,illuminance_lux,std_err_lux and, with a DF
-// study, daylight_factor_pct,daylight_factor_std_err_pct. Rows in the set's cell order.
-std::string sensorCsv(const SensorSet& set, const SensorStatistics& stats, const std::optional<DaylightFactorSpec>& df);
+// Each cell's row (io/sensor_csv.h: what the CSV holds and `fenestra falsecolor` reads back), in
+// the set's cell order; `path` names the file they go to.
+SensorFile sensorRows(const SensorSet& set, const SensorStatistics& stats, const std::optional<DaylightFactorSpec>& df,
+                      const std::string& path);
+// The rows as CSV. Columns: sensor,cell,x_m,y_m,z_m,nx,ny,nz,area_m2,illuminance_lux,std_err_lux
+// and, with a DF study, daylight_factor_pct,daylight_factor_std_err_pct.
+std::string sensorCsv(const SensorFile& file);
 
 // {"NAME": {...}, ...} in the order the sensors were given.
 nlohmann::json sensorSummary(const SensorSet& set, const SensorStatistics& stats,
