@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 
+#include "support/error_of.h"
 #include "scene/gltf_load.h"
 #include "sky/sky_spec.h"
 #include "sky/sky_sun_options.h"
@@ -21,15 +22,7 @@ namespace {
 constexpr double kHalfPi = M_PI / 2;
 const glm::dvec3 kUp(0, 1, 0), kDown(0, -1, 0);
 
-std::string errorOf(const std::function<void()>& f)
-{
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+using test::errorOf;
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 

@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "support/error_of.h"
 #include "sky/cie_sky.h"
 #include "sky/goniogram.h"
 #include "util/error.h"
@@ -22,15 +23,7 @@ constexpr double kHalfPi = M_PI / 2;
 constexpr double kTwoPi = 2 * M_PI;
 constexpr double kDeg = M_PI / 180;
 
-std::string errorOf(const std::function<void()>& f)
-{
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+using test::errorOf;
 
 bool startsWith(const std::string& s, const std::string& prefix)
 {
