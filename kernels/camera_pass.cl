@@ -1,11 +1,15 @@
 /* camera_pass.cl — what the camera sees of the sky directly (DESIGN.md §6: a path from the sky
  * straight to the pinhole cannot be sampled from the light side, so it is traced from the camera).
  *
- * Work-item = pixel: params->camera_spp rays at uniform positions in the pixel (box filter); each
- * passes through glass (weight T (1 - R), straight on) until it leaves the scene, where it picks up
- * the sky's luminance, or hits anything else, where it picks up nothing (that light is the light
- * tracer's). Writes out[pixel] = mean over the samples (rgb). Atomics: camera-ray counter (per
- * work-group).
+ * Work-item = pixel: spp[pixel] rays at uniform positions in the pixel (box filter; the host sets
+ * the counts per batch, host/render/camera_sampler.h); each passes through glass (weight
+ * T (1 - R), straight on) until it leaves the scene, where it picks up the sky's luminance, or hits
+ * anything else, where it picks up nothing (that light is the light tracer's). Writes out[pixel] =
+ * (mean over the samples (rgb), the sum of squared deviations of the samples' luminance from their
+ * mean): the host estimates each pixel's per-sample variance from the latter. Welford's update,
+ * since a sky pixel's luminance is thousands of cd/m^2 and sum(y^2) - n mean^2 in float would make
+ * up variance where there is none.
+ * Atomics: camera-ray counter (per work-group).
  */
 #include "lib/accumulate.h"
 #include "lib/bvh_traverse.h"
@@ -25,7 +29,7 @@ static inline uint camera_pixel(uint* cut, uint pixel, global const RenderParams
                                 global const BvhNode* nodes, global const TriPacket4* packets,
                                 global const uint* prim_material, global const DevMaterial* materials,
                                 global const float* sky_theta, global const float* sky_phi,
-                                global const float* sky_values, global float4* out)
+                                global const float* sky_values, global const uint* spp, global float4* out)
 {
     *cut = 0;
     if (pixel >= cam->width * cam->height)
@@ -35,13 +39,15 @@ static inline uint camera_pixel(uint* cut, uint pixel, global const RenderParams
                              params->sky_theta_nodes, params->sky_phi_nodes);
     const uint px = pixel % cam->width, py = pixel / cam->width;
     float3 sum = (float3)(0.0f);
+    float mean_y = 0.0f, m2_y = 0.0f; /* Welford: the samples' luminance */
     uint rays = 0;
-    *cut = 0;
-    for (uint s = 0; s < params->camera_spp; ++s) {
+    const uint n = spp[pixel];
+    for (uint s = 0; s < n; ++s) {
         const float4 u = rng_camera(params->seed, pixel, s, params->batch);
         const float3 dir = camera_direction(cam, (float)px + u.x, (float)py + u.y);
         float3 org = cam->position.xyz;
         float3 weight = (float3)(1.0f);
+        float3 value = (float3)(0.0f);
         int k = 0;
         for (; k < FEN_CAMERA_MAX_GLASS; ++k) {
             const RayPre r = ray_setup(org, dir, 0.0f, INFINITY, FEN_BVH_WIDTH);
@@ -49,7 +55,7 @@ static inline uint camera_pixel(uint* cut, uint pixel, global const RenderParams
             const Hit h = bvh_intersect_closest_at(nodes, packets, &r, &packet_lane);
             ++rays;
             if (h.prim == FEN_INVALID_ID) {
-                sum += weight * sky_eval(&sky, dir);
+                value = weight * sky_eval(&sky, dir);
                 break;
             }
             const global DevMaterial* m = materials + prim_material[h.prim];
@@ -65,8 +71,13 @@ static inline uint camera_pixel(uint* cut, uint pixel, global const RenderParams
             org = offset_ray_origin(x, offset_m, ng, dir);
         }
         *cut += k == FEN_CAMERA_MAX_GLASS;
+        sum += value;
+        const float y = rgb_luminance(value);
+        const float delta = y - mean_y;
+        mean_y += delta / (float)(s + 1u);
+        m2_y += delta * (y - mean_y);
     }
-    out[pixel] = (float4)(sum / (float)max(params->camera_spp, 1u), 0.0f);
+    out[pixel] = (float4)(sum / (float)max(n, 1u), m2_y);
     return rays;
 }
 
@@ -74,13 +85,13 @@ kernel void camera_pass(global const RenderParams* params, global const DevCamer
                         global const BvhNode* nodes, global const TriPacket4* packets,
                         global const uint* prim_material, global const DevMaterial* materials,
                         global const float* sky_theta, global const float* sky_phi,
-                        global const float* sky_values, global float4* out,
+                        global const float* sky_values, global const uint* spp, global float4* out,
                         volatile global ulong* counters)
 {
     local uint rays_in_group;
     uint cut;
     const uint rays = camera_pixel(&cut, get_global_id(0), params, cam, nodes, packets, prim_material, materials,
-                                   sky_theta, sky_phi, sky_values, out);
+                                   sky_theta, sky_phi, sky_values, spp, out);
     group_count_add(counters + FEN_CTR_CAMERA_RAYS, rays, &rays_in_group);
     group_count_add(counters + FEN_CTR_CAMERA_GLASS_CUT, cut, &rays_in_group);
 }

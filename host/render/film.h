@@ -7,6 +7,10 @@
 // diffuse luminance of the scene): contributions down to 1e-12 of it keep 1e-6 relative precision,
 // and 2^127 units hold any plausible sum. Integer sums do not depend on the order of the atomic
 // adds, so an image is bit-identical whatever the scheduling.
+// The camera pass's part of a batch is kept apart (addCamera): each pixel's is the mean of all its
+// camera samples over the batches, sum_b n_b m_b / sum_b n_b, since their counts n_b vary from
+// batch to batch and pixel to pixel (render/camera_sampler.h: unbiased because the counts never
+// depend on the samples they weigh), and its variance is that of the samples over their count.
 // Batches are independent estimates (or, with a learning strategy, unbiased given everything
 // before them), so the spread of a pixel's batch values gives its standard error. A batch may
 // carry a weight w_b in proportion to its expected precision (a learning strategy's early
@@ -17,6 +21,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "cl/context.h"
@@ -37,18 +42,26 @@ public:
     std::size_t pixels() const { return static_cast<std::size_t>(width_) * height_; }
     float fixedScale() const { return fixedScale_; }
     cl::Buffer& accumulators() { return accum_; }
+    // The camera pass's output, per pixel: rgb mean of its samples, w the sum of their luminances'
+    // squared deviations (kernels/camera_pass.cl).
     cl::Buffer& cameraImage() { return camera_; }
+    // The camera pass's samples per pixel (uint each; 1 until set): what it traces next batch.
+    cl::Buffer& cameraSamples() { return cameraSamples_; }
+    void setCameraSamples(const std::vector<std::uint32_t>& perPixel);
 
     // Zeroes the accumulators (enqueued).
     void clear();
-    // The batch's image, rgb per pixel: accumulators / (scale x paths) + the camera pass.
-    std::vector<double> read(std::uint64_t paths);
+    // The batch's image, rgb per pixel: accumulators / (scale x paths) + the camera pass; with
+    // `camera`, the light-traced part alone, and the camera pass's output apart as it is on the
+    // device (4 floats per pixel, above).
+    std::vector<double> read(std::uint64_t paths, std::vector<float>* camera = nullptr);
+    std::vector<float> readCamera();
 
 private:
     ocl::Context& ctx_;
     int width_, height_;
     float fixedScale_;
-    cl::Buffer accum_, camera_;
+    cl::Buffer accum_, camera_, cameraSamples_;
 };
 
 class StateReader;
@@ -58,13 +71,20 @@ class StateWriter;
 class BatchStatistics {
 public:
     BatchStatistics(int width, int height, std::vector<Roi> rois);
+    // A batch's image (with addCamera: its light-traced part alone), of weight `weight`.
     void add(const std::vector<double>& rgb, double weight = 1.0);
+    // The batch's camera pass: its output (Film::cameraImage, 4 floats a pixel) and its samples
+    // per pixel.
+    void addCamera(const std::vector<float>& camera, const std::vector<std::uint32_t>& counts);
     int batches() const { return batches_; }
     Image mean() const;
     std::vector<double> stdErrLuminance() const;
     // roiBatchMeans()[k][b]: mean luminance of ROI k in batch b; weights()[b]: batch b's weight.
     const std::vector<std::vector<double>>& roiBatchMeans() const { return roiMeans_; }
     const std::vector<double>& weights() const { return weights_; }
+    // ROI k's camera-pass part: its mean luminance and that mean's variance (each pixel's samples
+    // are independent of the others'); (0, 0) with no camera part kept apart.
+    std::pair<double, double> roiCamera(std::size_t k) const;
     // The sums so far, exactly (render/checkpoint.h); load() requires the same image and ROIs.
     void save(StateWriter& w) const;
     void load(StateReader& r);
@@ -72,7 +92,12 @@ public:
 private:
     int width_, height_;
     std::vector<Roi> rois_;
+    // the camera part's variance of one sample's luminance at pixel p (0 below two samples)
+    double cameraSampleVar(std::size_t p) const;
     std::vector<double> sum_, sumY2_;  // weighted
+    // the camera part, per pixel: sum n m (rgb), sum n, and for its luminance the within-batch
+    // squared deviations, sum n m_Y, sum n m_Y^2
+    std::vector<double> camSum_, camN_, camM2_, camY1_, camY2_;
     std::vector<std::vector<double>> roiMeans_;
     std::vector<double> weights_;
     double weight_ = 0.0;

@@ -21,7 +21,7 @@ MemoryNeeds renderMemoryNeeds(int width, int height, std::uint64_t poolSlots)
 {
     const std::uint64_t px = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
     MemoryNeeds n;
-    const std::uint64_t accum = px * Film::kWordsPerPixel * 8, camera = px * 16;
+    const std::uint64_t accum = px * Film::kWordsPerPixel * 8, camera = px * (16 + 4);  // image, samples
     n.deviceBytes = accum + camera + poolSlots * poolSlotBytes();
     n.largestBufferBytes = std::max<std::uint64_t>(accum, poolSlots * poolLargestSlotBytes());
     // The host: the batch sums (rgb and Y^2), the batch's image and the mean, the noise image, the

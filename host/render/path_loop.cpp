@@ -124,7 +124,8 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
                        scene.materials(), film.accumulators(), *ek.cellStats, *pixelScale, guide->stats(),
                        counters_);
     ocl::setKernelArgs(cameraPass_, paramsBuf_, cameraBuf_, b.nodes(), b.packets(), scene.primMaterial(),
-                       scene.materials(), sky.theta, sky.phi, sky.values, film.cameraImage(), counters_);
+                       scene.materials(), sky.theta, sky.phi, sky.values, film.cameraSamples(), film.cameraImage(),
+                       counters_);
     warmUp();
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -241,6 +242,18 @@ std::uint64_t PathLoop::runFused(std::uint64_t base, std::uint64_t count, BatchC
             break;
     }
     return done;
+}
+
+std::uint64_t PathLoop::cameraPassAlone(std::uint32_t batch)
+{
+    auto& q = ctx_.queue();
+    q.enqueueFillBuffer(counters_, cl_ulong(0), 0, FEN_CTR_COUNT * 8);
+    params_.batch = batch;
+    q.enqueueWriteBuffer(paramsBuf_, CL_FALSE, 0, sizeof params_, &params_);
+    ocl::launch(ctx_, cameraPass_, "camera_pass", film_.pixels());
+    std::uint64_t ctr[FEN_CTR_COUNT] = {};
+    q.enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof ctr, ctr);
+    return ctr[FEN_CTR_CAMERA_RAYS];
 }
 
 void PathLoop::endBatch(std::uint32_t batch, BatchCounts& counts)

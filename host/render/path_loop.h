@@ -83,6 +83,9 @@ public:
     std::uint64_t run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
                       const std::function<void(std::uint64_t, std::uint64_t)>& progress,
                       const std::function<bool()>& abort = {});
+    // The camera pass alone, its random numbers those of batch `batch` (render/camera_sampler.h's
+    // pilot: a number no counted batch has); returns its rays. Zeroes the counters.
+    std::uint64_t cameraPassAlone(std::uint32_t batch);
     // The camera pass of batch `batch`, then the batch's counters into `counts`.
     void endBatch(std::uint32_t batch, BatchCounts& counts);
 

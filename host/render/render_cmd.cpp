@@ -262,6 +262,8 @@ int runRender(const RenderOptions& opt)
     settings.timeSeconds = opt.timeSeconds.value_or(0.0);
     settings.batches = opt.batchesValue();
     settings.cameraSpp = opt.cameraSpp.value_or(settings.cameraSpp);
+    if (opt.cameraPass)
+        settings.cameraPass = parseCameraPassMode(*opt.cameraPass);
     settings.seed = opt.seedValue();
     settings.maxBounces = opt.maxBouncesValue();
     settings.bvhWidth = opt.bvhWidth;
@@ -397,7 +399,8 @@ int runRender(const RenderOptions& opt)
                        {"resumed_batches", r.resumedBatches}};
     j["batches"] = r.batches;
     j["paths_per_batch"] = r.pathsPerBatch;
-    j["camera_samples_per_pixel"] = static_cast<std::uint64_t>(r.batches) * static_cast<std::uint64_t>(settings.cameraSpp);
+    j["camera_samples_per_pixel"] = r.cameraSamplesPerPixel;
+    j["camera_pass"] = r.cameraPass;
     const BatchCounts& n = r.counts;
     const std::uint64_t lightRays = n.extensionRays + n.shadowRays;
     j["rays"] = {{"extension", n.extensionRays},

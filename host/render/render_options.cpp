@@ -57,7 +57,11 @@ void addRenderOptions(CLI::App& r, RenderOptions& o)
     r.add_option("--layout", o.layout, "BVH layout: bvh2, bvh4 or bvh8 (default: the device's)");
     r.add_option("--batches", o.batches, "Independent batches for the noise estimate, 2 to 65536 (default 16)");
     r.add_option("--camera-spp", o.cameraSpp,
-                 "Camera-pass samples per pixel per batch, for the sky seen directly, 1 to 4096 (default 1)");
+                 "Camera-pass samples per pixel per batch, for the sky seen directly, 1 to 4096: every pixel's, "
+                 "or with --camera-pass balanced the least a pixel gets (default 1)");
+    r.add_option("--camera-pass", o.cameraPass,
+                 "How the camera pass spends its samples: balanced (each pixel in proportion to its own noise, "
+                 "the total balanced against the light tracer's; default) or fixed (--camera-spp everywhere)");
     r.add_option("--kernels", o.kernels,
                  "How the stages run: fused (one kernel per path, default on a CPU) or wavefront (default on a GPU)");
     std::string rouletteDefaults;  // each strategy's own (emission/strategy_registry.h)
@@ -139,7 +143,7 @@ void validateRenderOptions(RenderOptions& o)
         // Nothing of the image's: a render for its sensors alone.
         const char* imageOption = o.width ? "--width" : o.height ? "--height" : o.roi ? "--roi" : !o.regions.empty() ? "--region"
                                   : o.referencePath ? "--reference" : o.exposure ? "--exposure" : !o.camera.empty() ? "--camera"
-                                  : o.cameraSpp ? "--camera-spp" : nullptr;
+                                  : o.cameraSpp ? "--camera-spp" : o.cameraPass ? "--camera-pass" : nullptr;
         if (imageOption)
             throw Error(cat(imageOption, " is about the image, and --no-image renders none"));
     }
@@ -168,6 +172,8 @@ void validateRenderOptions(RenderOptions& o)
     requireName(o.checkpointPath, "--checkpoint");
     requireName(o.resumePath, "--resume");
     requireName(o.referencePath, "--reference");
+    if (o.cameraPass && *o.cameraPass != "balanced" && *o.cameraPass != "fixed")
+        throw Error(cat("--camera-pass '", printable(*o.cameraPass, 40), "': must be balanced or fixed"));
     if (o.kernels && *o.kernels != "fused" && *o.kernels != "wavefront")
         throw Error(cat("--kernels '", printable(*o.kernels, 40), "': must be fused or wavefront"));
     if (o.progressOn && o.progressOff)

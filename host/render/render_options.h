@@ -46,6 +46,7 @@ struct RenderOptions {
     int bvhWidth = 0;                      // from --layout (validateRenderOptions); 0: the device's
     std::optional<int> batches;            // not given: 16
     std::optional<int> cameraSpp;          // not given: 1
+    std::optional<std::string> cameraPass; // --camera-pass balanced|fixed; not given: balanced
     std::optional<std::int64_t> poolSize;  // not given: the device's
     std::optional<double> exposure;        // not given: the ROI's mean to mid-grey
     std::optional<std::string> kernels;    // --kernels wavefront|fused; not given: the device's

@@ -65,6 +65,7 @@ struct Renderer::Impl {
     std::uint64_t sceneHash_ = 0;  // only when checkpointing or resuming
     bool steersByPixel = false;    // the strategy wants the image so far (imageEstimate)
     std::optional<SensorStatistics> sensorStats;  // the counted batches' sensor cells, with sensors
+    CameraSampler cameraSampler;  // the camera pass's samples per pixel
     // With no image and a relative target, the sensors steer: each cell's illuminance so far,
     // smoothed over its neighbours (so that one lucky path does not swing it), sets its factor.
     std::unique_ptr<SensorSmoother> steerSmoother;
@@ -84,8 +85,11 @@ struct Renderer::Impl {
           sensors(st.sensors && !st.sensors->empty() ? DeviceSensors(c, *st.sensors, static_cast<float>(film.fixedScale() / M_PI))
                                                       : DeviceSensors(c)),
           strategy(makeEmissionStrategy(st.emission, {c, s, skyTables, g, sky, scene.bvh().width(), film.fixedScale(), film.width(), film.height()})),
-          pool(st.poolSize > 0 ? st.poolSize : defaultPoolSlots(c.info()))
+          pool(st.poolSize > 0 ? st.poolSize : defaultPoolSlots(c.info())),
+          cameraSampler(film.pixels(), static_cast<std::uint32_t>(st.cameraSpp),
+                        st.noImage ? CameraPassMode::Fixed : st.cameraPass)
     {
+        film.setCameraSamples(cameraSampler.counts());
         camera = cam;
         if (!st.checkpointPath.empty() || !st.resumePath.empty())
             sceneHash_ = sceneHash(s);
@@ -119,7 +123,6 @@ struct Renderer::Impl {
         p.sky_theta_nodes = skyTables.thetaNodes;
         p.sky_phi_nodes = skyTables.phiNodes;
         p.pool_size = pool;
-        p.camera_spp = static_cast<std::uint32_t>(st.cameraSpp);
         p.rr_depth = static_cast<std::uint32_t>(*settings.rouletteDepth);  // resolved: always set
         p.split_max = static_cast<std::uint32_t>(st.splitMax);
         p.split_weight = static_cast<float>(st.splitWeight * strategy->emittedFluxPerPath());
@@ -204,6 +207,7 @@ struct Renderer::Impl {
 
     struct BatchImage {
         std::vector<double> rgb;  // per pixel
+        std::vector<float> camera;  // the camera pass's output (film.h cameraImage)
         std::vector<double> sensorLux;  // per sensor cell
         std::uint64_t paths = 0;  // traced: the batch's count, or fewer when a stop cut it short
     };
@@ -242,7 +246,49 @@ struct Renderer::Impl {
         const std::uint64_t shadowBefore = counts.shadowRays;
         loop->endBatch(batch, counts);
         raysDone += counts.shadowRays - shadowBefore;
-        return {film.read(done), sensors.read(done), done};
+        BatchImage img;
+        img.rgb = film.read(done, &img.camera);
+        img.sensorLux = sensors.read(done);
+        img.paths = done;
+        return img;
+    }
+
+    // A batch counted: into the film's and sensors' statistics, and what the camera pass learns
+    // from it sets its samples for the next (`before`: the counts before the batch).
+    void countBatch(const BatchImage& img, const BatchCounts& before, const BatchCounts& after, BatchStatistics& stats)
+    {
+        const double w = strategy->batchWeight();
+        if (cameraSampler.mode() == CameraPassMode::Balanced) {
+            stats.add(img.rgb, w);  // the light-traced part; the camera's apart, weighed by its samples
+            stats.addCamera(img.camera, cameraSampler.counts());
+        } else {
+            // Fixed: the same samples every batch, so the camera pass is part of the batch's image
+            // (and the image is the one this mode always gave, bit for bit).
+            std::vector<double> whole = img.rgb;
+            for (std::size_t p = 0; p < film.pixels(); ++p)
+                for (int c = 0; c < 3; ++c)
+                    whole[3 * p + c] += img.camera[4 * p + c];
+            stats.add(whole, w);
+        }
+        if (sensorStats)
+            sensorStats->add(img.sensorLux, w);
+        std::vector<double> light(film.pixels());
+        for (std::size_t p = 0; p < light.size(); ++p)
+            light[p] = luminance(img.rgb[3 * p], img.rgb[3 * p + 1], img.rgb[3 * p + 2]);
+        cameraSampler.afterBatch(light, w, (after.extensionRays + after.shadowRays) - (before.extensionRays + before.shadowRays));
+        film.setCameraSamples(cameraSampler.counts());
+    }
+
+    // Balanced camera sampling starts with its pilot: each pixel's own variance, from samples of
+    // their own (camera_sampler.h). Not on resume: the checkpoint has it.
+    void cameraPilot()
+    {
+        while (cameraSampler.needsPilot()) {
+            // random numbers of batches no counted batch is (nor the calibration, 0xFFFFFFFF)
+            const std::uint64_t rays = loop->cameraPassAlone(0xFFFFFFFEu - static_cast<std::uint32_t>(cameraSampler.pilotPass()));
+            cameraSampler.addPilot(film.readCamera(), rays, static_cast<std::size_t>(film.width()));
+            film.setCameraSamples(cameraSampler.counts());
+        }
     }
 
     // The strategy's state, as a checkpoint holds it (between batches).
@@ -298,6 +344,7 @@ struct Renderer::Impl {
                 {"time", settings.paths > 0 ? 0.0 : settings.timeSeconds},
                 {"batches", settings.batches},
                 {"camera_spp", settings.cameraSpp},
+                {"camera_pass", cameraPassModeName(settings.cameraPass)},
                 {"max_bounces", settings.maxBounces},
                 {"roulette_depth", *settings.rouletteDepth},
                 {"split_max", settings.splitMax},
@@ -324,6 +371,7 @@ struct Renderer::Impl {
         saved.counts = r.counts;
         writeLoopState(w, saved);
         stats.save(w);
+        cameraSampler.save(w);
         if (sensorStats)
             sensorStats->save(w);
         if (strategyBytes)
@@ -344,6 +392,8 @@ struct Renderer::Impl {
         stats.load(in);
         if (stats.batches() != l.done)
             in.fail("film.batches", "does not match loop.done");
+        cameraSampler.load(in);
+        film.setCameraSamples(cameraSampler.counts());
         if (sensorStats) {
             sensorStats->load(in);
             if (sensorStats->batches() != l.done)
@@ -386,6 +436,9 @@ struct Renderer::Impl {
             pathsDone = l.perBatch * static_cast<std::uint64_t>(l.done);
             budgetSeconds = settings.paths > 0 ? 0.0 : settings.timeSeconds;
         } else if (settings.paths > 0) {
+            const auto p0 = Clock::now();
+            cameraPilot();
+            l.renderSeconds += since(p0);  // part of the render
             l.perBatch = std::max<std::uint64_t>(1, settings.paths / static_cast<std::uint64_t>(batches));
         } else {
             // Calibration, not counted: batches doubling from four pool-fulls until one lasts
@@ -396,6 +449,7 @@ struct Renderer::Impl {
             std::uint64_t cal = std::uint64_t{pool} * 4;
             const double enough = std::min(1.0, 0.02 * settings.timeSeconds);
             const auto c0 = Clock::now();
+            cameraPilot();  // timed with the calibration: before it, so that it measures what batches cost
             double last = 0.0;
             for (;;) {
                 const auto t0 = Clock::now();
@@ -468,18 +522,14 @@ struct Renderer::Impl {
                     dropped = true;
                     break;
                 }
-                stats.add(img.rgb, strategy->batchWeight());
-                if (sensorStats)
-                    sensorStats->add(img.sensorLux, strategy->batchWeight());
+                countBatch(img, countsBefore, r.counts, stats);
                 l.base += img.paths;
                 l.perBatch = img.paths;
                 ++l.done;
                 partial = true;
                 break;
             }
-            stats.add(img.rgb, strategy->batchWeight());
-            if (sensorStats)
-                sensorStats->add(img.sensorLux, strategy->batchWeight());
+            countBatch(img, countsBefore, r.counts, stats);
             estimateImage(&stats, 0);
             l.base += l.perBatch;
             ++l.done;
@@ -507,12 +557,33 @@ struct Renderer::Impl {
         r.image = stats.mean();
         r.stdErrLuminance = stats.stdErrLuminance();
         r.roiBatchMeans = stats.roiBatchMeans();
+        r.roiCamera.clear();
+        for (std::size_t k = 0; k < settings.rois.size(); ++k)
+            r.roiCamera.push_back(stats.roiCamera(k));
         r.batchWeights = stats.weights();
         r.sensors = sensorStats;
         r.emission = strategy->report();
         r.emissionWarnings = strategy->warnings();
         r.emittedFluxPerPath = strategy->emittedFluxPerPath();
         r.kernels = ctx.stats().entries();
+        double deviceSeconds = 0.0, cameraSeconds = 0.0;
+        for (const auto& [name, e] : r.kernels) {
+            deviceSeconds += e.deviceSeconds;
+            if (name == "camera_pass")
+                cameraSeconds += e.deviceSeconds;
+        }
+        r.cameraSamplesPerPixel = static_cast<double>(cameraSampler.samplesTotal()) /
+                                  static_cast<double>(std::max<std::size_t>(film.pixels(), 1));
+        r.cameraPass = {{"mode", cameraPassModeName(cameraSampler.mode())},
+                        {"floor_samples", settings.cameraSpp},
+                        {"samples", cameraSampler.samplesTotal()},
+                        {"samples_next_batch", cameraSampler.samplesPerBatch()},
+                        {"max_samples_per_pixel", cameraSampler.maxCount()},
+                        {"pixels_above_floor", cameraSampler.pixelsAboveFloor()},
+                        {"device_time_share", deviceSeconds > 0.0 ? cameraSeconds / deviceSeconds : 0.0},
+                        // fixed mode learns no pixel's variance: its share is not known
+                        {"error_share", cameraSampler.mode() == CameraPassMode::Balanced
+                                            ? nlohmann::json(cameraSampler.errorShare()) : nlohmann::json(nullptr)}};
         return r;
     }
 };
@@ -525,7 +596,7 @@ double RenderResult::roiMean(std::size_t k) const
         s += batchWeights[b] * v[b];
         W += batchWeights[b];
     }
-    return v.empty() ? 0.0 : s / W;
+    return (v.empty() ? 0.0 : s / W) + (k < roiCamera.size() ? roiCamera[k].first : 0.0);
 }
 
 double RenderResult::maxBounceFluxShare() const
@@ -539,13 +610,16 @@ double RenderResult::roiMeanStdErr(std::size_t k) const
     const auto& v = roiBatchMeans.at(k);
     if (v.size() < 2)
         return 0.0;
-    const double m = roiMean(k);
-    double ss = 0.0, W = 0.0;
+    double m = 0.0, ss = 0.0, W = 0.0;
     for (std::size_t b = 0; b < v.size(); ++b) {
-        ss += batchWeights[b] * (v[b] - m) * (v[b] - m);
+        m += batchWeights[b] * v[b];
         W += batchWeights[b];
     }
-    return std::sqrt(ss / static_cast<double>(v.size() - 1) / W);
+    m /= W;
+    for (std::size_t b = 0; b < v.size(); ++b)
+        ss += batchWeights[b] * (v[b] - m) * (v[b] - m);
+    // the light-traced part's batch spread, and the camera part's own variance (independent)
+    return std::sqrt(ss / static_cast<double>(v.size() - 1) / W + (k < roiCamera.size() ? roiCamera[k].second : 0.0));
 }
 
 Renderer::Renderer(ocl::Context& ctx, const Scene& scene, const std::optional<Goniogram>& sky,

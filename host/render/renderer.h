@@ -26,6 +26,7 @@
 #include "emission/strategy.h"
 #include "emission/strategy_registry.h"
 #include "io/image.h"
+#include "render/camera_sampler.h"
 #include "render/image_stats.h"
 #include "render/path_loop.h"
 #include "sensor/sensor_set.h"
@@ -50,7 +51,10 @@ struct RenderSettings {
     std::uint64_t paths = 0;     // total light paths; 0 = use timeSeconds
     double timeSeconds = 0.0;
     int batches = 16;            // independent batches (>= 2): the noise estimate's sample size
-    int cameraSpp = 1;           // camera-pass samples per pixel, per batch
+    int cameraSpp = 1;           // camera-pass samples per pixel, per batch: the floor when balanced
+    // How the camera pass spends its samples (render/camera_sampler.h): balanced, in proportion to
+    // each pixel's own noise, or a fixed cameraSpp everywhere.
+    CameraPassMode cameraPass = CameraPassMode::Balanced;
     std::uint32_t seed = 1;
     int maxBounces = 1024;       // guards against endless paths; roulette ends them (cut flux: reported)
     int bvhWidth = 0;            // 0 = the device's default layout
@@ -109,12 +113,20 @@ struct RenderResult {
     std::vector<std::string> emissionWarnings;  // the strategy's (EmissionStrategy::warnings)
     double emittedFluxPerPath = 0.0;  // lm (EmissionStrategy::emittedFluxPerPath)
     std::map<std::string, ocl::KernelStats::Entry> kernels;
-    // roiBatchMeans[k][b]: mean luminance of settings.rois[k] in batch b. Batches are independent,
+    // roiBatchMeans[k][b]: mean luminance of settings.rois[k]'s light-traced part in batch b (plus
+    // roiCamera[k]: roiMean). Batches are independent,
     // so their (weighted) spread gives the ROI mean's standard error (pixels within a batch are
     // not).
     std::vector<std::vector<double>> roiBatchMeans;
     std::vector<double> batchWeights;  // film.h BatchStatistics: 1 each unless the strategy learns
+    // Per ROI, the camera pass's part apart from the batches' (film.h): its mean and that mean's
+    // variance. roiBatchMeans are of the light-traced part.
+    std::vector<std::pair<double, double>> roiCamera;
     std::optional<SensorStatistics> sensors;  // with sensors: each cell's illuminance over the batches
+    // The camera pass: its mode, samples, the share of the render's device time it took and its
+    // predicted share of the image's variance (render_cmd.cpp writes it as JSON camera_pass).
+    nlohmann::json cameraPass;
+    double cameraSamplesPerPixel = 0.0;  // mean over the pixels, all counted batches
     double roiMean(std::size_t k) const;
     double roiMeanStdErr(std::size_t k) const;
     // The flux the --max-bounces cap removed over the flux emitted: the relative bias of the cap

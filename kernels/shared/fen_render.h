@@ -144,7 +144,7 @@ typedef struct {
     fen_u32 sky_theta_nodes; /* the scene's sky, as the camera pass reads it */
     fen_u32 sky_phi_nodes;
     fen_u32 pool_size;
-    fen_u32 camera_spp;      /* camera-pass samples per pixel in this batch */
+    fen_u32 reserved0;       /* keeps the layout (the camera pass's samples are per pixel: Film) */
     fen_u32 batch;           /* batch number, for the camera pass's random numbers */
     fen_u32 rr_depth;        /* Russian roulette from this surface interaction on (lib/shade_path.h) */
     fen_f32 split_weight;    /* a path splits at its first diffuse vertex into floor(Y(beta) / this) */

@@ -142,6 +142,12 @@ TEST(CliRender, WritesExrPngAndJson)
     // At least the noisiest 1 % of the pixels' own share, at most all of it.
     EXPECT_GE(j["noise_top1_share"].get<double>(), 0.01 - 1e-12);
     EXPECT_LE(j["noise_top1_share"].get<double>(), 1.0);
+    // The camera pass says what it did (balanced by default).
+    EXPECT_EQ(j["camera_pass"]["mode"], "balanced");
+    for (const char* k : {"floor_samples", "samples", "samples_next_batch", "max_samples_per_pixel",
+                          "pixels_above_floor", "device_time_share", "error_share"})
+        EXPECT_TRUE(j["camera_pass"].contains(k)) << k;
+    EXPECT_GE(j["camera_samples_per_pixel"].get<double>(), 16.0);  // at least one a batch
     // --reference: the image against itself has zero error.
     const CliRun r2 = run("render " + scene + " --out " + dir + "/again.exr --paths 200000 --width 40 "
                           "--no-progress --reference " + dir + "/new/out.exr --roi 5,5,30,25");
@@ -789,6 +795,7 @@ TEST(CliRender, OutOfRangeOptionsAreErrorsNotDefaults)
         {" --paths 1000 --seed 4294967296", "--seed 4294967296"},
         {" --paths 1000 --batches 1", "--batches 1: must be in 2..65536"},
         {" --paths 1000 --camera-spp 0", "--camera-spp 0"},
+        {" --paths 1000 --camera-pass adaptive", "--camera-pass 'adaptive'"},
         {" --paths 1000 --pool 0", "--pool 0"},
         {" --paths 1000 --exposure 0", "--exposure 0"},
         {" --paths 72057594037927937", "--paths 72057594037927937: must be a whole number from 1 to 2^56"},
@@ -1117,6 +1124,8 @@ TEST(CliSensors, BadSensorsAreOneLineErrors)
     expectError(run("render " + scene + out + " --no-image"), 1, "--no-image renders sensors alone");
     expectError(run("render " + scene + out + " --no-image --work-plane plate --width 40"), 1,
                 "--width is about the image");
+    expectError(run("render " + scene + out + " --no-image --work-plane plate --camera-pass fixed"), 1,
+                "--camera-pass is about the image");
     expectError(run("render " + scene + out + " --daylight-factor --work-plane plate --sky uniform"), 1,
                 "--daylight-factor is defined under the CIE overcast sky");
     expectError(run("render " + scene + out + " --daylight-factor --work-plane plate --sun 30,180"), 1,
