@@ -18,7 +18,9 @@ cd/m² in every channel, as in fenestra's images.
     python3 scripts/mitsuba_peer.py scenes/inner_room.gltf --width 320 --spp 64 --runs 8 \
         --out out/peer/mi_box --filter box
 
-writes OUT_<k>.exr for k = 1..runs and OUT.json with each run's render seconds.
+writes OUT_<k>.exr for k = 1..runs and OUT.json with each run's render seconds. `--integrator path`
+renders with Mitsuba's path tracer instead, which shows the sky seen directly (the light tracer hides
+it: that light is fenestra's camera pass).
 """
 import argparse
 import base64
@@ -203,7 +205,10 @@ def main():
     ap.add_argument("--runs", type=int, default=8)
     ap.add_argument("--seed0", type=int, default=1)
     ap.add_argument("--filter", default="box", help="Mitsuba rfilter: box (fenestra's) or gaussian (Mitsuba's default)")
-    ap.add_argument("--rr-depth", type=int, default=5, help="ptracer rr_depth (Mitsuba's default 5)")
+    ap.add_argument("--rr-depth", type=int, default=5, help="rr_depth (Mitsuba's default 5)")
+    ap.add_argument("--integrator", default="ptracer", choices=["ptracer", "path"],
+                    help="ptracer (the light tracer, the sky seen directly hidden) or path (the path tracer, "
+                         "which shows it, through thin glass too)")
     ap.add_argument("--out", required=True, help="output prefix")
     ap.add_argument("--check-sky", action="store_true")
     args = ap.parse_args()
@@ -212,8 +217,8 @@ def main():
     mi.set_variant("scalar_rgb")
     work = args.out + "_meshes"
     d = scene_dict(mi, args.scene, args.width, args.spp, args.filter, work)
-    d["integrator"] = {"type": "ptracer", "max_depth": -1, "rr_depth": args.rr_depth,
-                       "hide_emitters": True}
+    d["integrator"] = {"type": args.integrator, "max_depth": -1, "rr_depth": args.rr_depth,
+                       "hide_emitters": args.integrator == "ptracer"}
     scene = mi.load_dict(d)
     if args.check_sky:
         doc, _ = read_gltf(args.scene)
@@ -230,7 +235,8 @@ def main():
         mi.Bitmap(img).write(path)
         runs.append({"exr": path, "seed": seed, "render_seconds": secs})
         print(f"run {k + 1}: {secs:.2f} s -> {path}", flush=True)
-    json.dump({"scene": args.scene, "width": args.width, "spp": args.spp, "filter": args.filter,
+    json.dump({"scene": args.scene, "integrator": args.integrator, "width": args.width, "spp": args.spp,
+               "filter": args.filter,
                "rr_depth": args.rr_depth, "mitsuba": mi.__version__, "runs": runs},
               open(args.out + ".json", "w"), indent=1)
 
