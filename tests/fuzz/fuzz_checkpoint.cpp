@@ -1,8 +1,8 @@
 // fuzz_checkpoint.cpp — libFuzzer entry: any bytes as a checkpoint to --resume, through what reads
 // one before the device is involved: the framing (magic, header line, length, checksum), the
 // header's build and fingerprint (render/checkpoint.h), then the payload's loop state, with its
-// checks against the render's settings, and the film's statistics (render/film.h), then the
-// caller's carried JSON.
+// checks against the render's settings, the film's statistics (render/film.h) and the camera
+// pass's samples (render/camera_sampler.h), then the caller's carried JSON.
 //
 // The checksum is made right for every input before it is read, as an edit whose checksum was
 // recomputed would be: so the mutations reach the payload, which is the point. The first byte
@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/state_io.h"
+#include "render/camera_sampler.h"
 #include "render/checkpoint.h"
 #include "render/film.h"
 #include "util/error.h"
@@ -75,6 +76,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         stats.load(in);
         if (stats.batches() != loop.done)
             in.fail("film.batches", "does not match loop.done");
+        fen::CameraSampler camera(8 * 6, 1, fen::CameraPassMode::Balanced);
+        camera.load(in);
         // (the strategy's state comes next: it needs the strategy, and the strategy a device)
     } catch (const fen::Error& e) {
         requireOneLine(e.what());
