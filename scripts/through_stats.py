@@ -10,7 +10,8 @@ rectangle fits (docs/results/peer.md, "The gap under the inner room's door").
 A pixel counts when its whole footprint (its corners, edge midpoints and centre) sees through the
 node's triangles from the scene's first camera, as fenestra's camera maps pixels (row 0 at the top;
 docs/DESIGN.md §1); pixels half on the node's edge are left out, so that a difference in how the
-renderers filter an edge cannot count. Nothing in front of the node is checked for occlusion. The
+renderers filter an edge cannot count. Nothing in front of the node is checked for occlusion;
+`--node all` takes every pixel (a whole image's mean, with the same statistics). The
 luminance is Y = 0.2126 R + 0.7152 G + 0.0722 B (DESIGN.md §1) for every renderer alike; the script
 also prints Y over the channels' mean and over G in the region, which say how far a comparison
 that reduced one renderer's colour some other way would be off. Renders made with
@@ -95,7 +96,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("scene")
     ap.add_argument("exrs", nargs="+")
-    ap.add_argument("--node", default="gap")
+    ap.add_argument("--node", default="gap", help="mesh node the pixels see through, or all (default gap)")
     ap.add_argument("--width", type=int, help="the full image's width (default: each EXR's own)")
     ap.add_argument("--crop-offset", default="0,0", help="x0,y0 of a cropped EXR in the full image")
     a = ap.parse_args()
@@ -109,7 +110,8 @@ def main():
         img = np.array(mi.Bitmap(path), dtype=float)[..., :3]
         if mask is None:
             w = a.width or img.shape[1]
-            full = through_mask(doc, a.node, w, int(round(w / aspect)))
+            h = int(round(w / aspect))
+            full = np.ones((h, w), bool) if a.node == "all" else through_mask(doc, a.node, w, h)
             mask = full[y0:y0 + img.shape[0], x0:x0 + img.shape[1]]
             print(f"{mask.sum()} pixels see wholly through {a.node} ({full.sum()} in the full image)")
         region = img[mask]
@@ -118,7 +120,7 @@ def main():
     m = np.array(means)
     se = m.std(ddof=1) / math.sqrt(len(m)) if len(m) > 1 else float("nan")
     y = rgb @ LUMA
-    print(f"renders {len(m)}: mean luminance {m.mean():.4g} cd/m2, standard error {se:.3g} "
+    print(f"renders {len(m)}: mean luminance {m.mean():.6g} cd/m2, standard error {se:.3g} "
           f"({100 * se / m.mean():.3f} %), one render's spread {100 * m.std(ddof=1) / m.mean() if len(m) > 1 else float('nan'):.2f} %")
     print(f"Y / mean(R, G, B) = {y / rgb.mean():.4f}, Y / G = {y / rgb[1]:.4f}")
 
