@@ -10,7 +10,9 @@ through the gap under its door by a camera zoomed on the gap).
 
 --material NAME=R,G,B sets that material's base colour (linear, 0..1; repeatable). --opening NAME
 makes that material a fully transparent opening (transmission 1, IOR 1, base colour white: what
-fenestra passes unchanged and scripts/mitsuba_peer.py leaves out; repeatable). --look-at X,Y,Z
+fenestra passes unchanged and scripts/mitsuba_peer.py leaves out; repeatable). --remove NODE takes
+that node's mesh out of the scene (the node stays, empty; repeatable): an opening against no
+surface at all. --look-at X,Y,Z
 turns the first camera towards that point (up stays +y), --look-from X,Y,Z moves it, --yfov DEG
 and --aspect A change its field of view; a point's coordinates are the scene's (metres, +y up).
 The scene must keep its buffers inside the file (data URIs, as every shipped scene does) or beside
@@ -62,6 +64,7 @@ def main():
     ap.add_argument("scene")
     ap.add_argument("--material", action="append", default=[], metavar="NAME=R,G,B")
     ap.add_argument("--opening", action="append", default=[], metavar="NAME")
+    ap.add_argument("--remove", action="append", default=[], metavar="NODE")
     ap.add_argument("--look-from", metavar="X,Y,Z")
     ap.add_argument("--look-at", metavar="X,Y,Z")
     ap.add_argument("--yfov", type=float, metavar="DEG")
@@ -100,6 +103,12 @@ def main():
         for ext in ("KHR_materials_transmission", "KHR_materials_ior"):
             if ext not in used:
                 used.append(ext)
+    for name in a.remove:
+        hits = [n for n in scene.get("nodes", []) if n.get("name") == name and "mesh" in n]
+        if not hits:
+            sys.exit("scene_variant.py: %s has no mesh node '%s'" % (a.scene, name))
+        for n in hits:
+            del n["mesh"]
     if a.look_from or a.look_at or a.yfov or a.aspect:
         cams = [n for n in scene.get("nodes", []) if "camera" in n]
         if not cams:
