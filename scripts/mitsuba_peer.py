@@ -18,9 +18,14 @@ cd/m² in every channel, as in fenestra's images.
     python3 scripts/mitsuba_peer.py scenes/inner_room.gltf --width 320 --spp 64 --runs 8 \
         --out out/peer/mi_box --filter box
 
-writes OUT_<k>.exr for k = 1..runs and OUT.json with each run's render seconds. `--integrator path`
-renders with Mitsuba's path tracer instead, which shows the sky seen directly (the light tracer hides
-it: that light is fenestra's camera pass).
+writes OUT_<k>.exr for k = 1..runs and OUT.json with each run's render seconds.
+
+`--integrator path` renders the same conversion with Mitsuba's path tracer instead (`--spp` then
+counts camera samples per pixel): a second estimator of the same scene, and far faster than the
+light tracer for a small region that light reaches by many bounces (docs/results/peer.md, the gap
+under the inner room's door); it also shows the sky seen directly (the light tracer hides it: that
+light is fenestra's camera pass). `--crop x0,y0,x1,y1` renders only that rectangle of the image (x1, y1
+exclusive; the EXR is the rectangle's size), for a region that needs many samples.
 """
 import argparse
 import base64
@@ -102,7 +107,7 @@ def write_ply(path, tris):
             f.write(struct.pack("<Biii", 3, i, i + 1, i + 2))
 
 
-def scene_dict(mi, gltf_path, width, spp, rfilter, workdir, sky_res=(2048, 1024)):
+def scene_dict(mi, gltf_path, width, spp, rfilter, workdir, sky_res=(2048, 1024), crop=None):
     doc, blob = read_gltf(gltf_path)
     os.makedirs(workdir, exist_ok=True)
     scene = {"type": "scene"}
@@ -159,6 +164,12 @@ def scene_dict(mi, gltf_path, width, spp, rfilter, workdir, sky_res=(2048, 1024)
                 "film": {"type": "hdrfilm", "width": width, "height": height,
                          "pixel_format": "rgb", "rfilter": {"type": rfilter}},
                 "sampler": {"type": "independent", "sample_count": spp}}
+            if crop:
+                x0, y0, x1, y1 = crop
+                if not (0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height):
+                    sys.exit(f"--crop {x0},{y0},{x1},{y1}: must lie inside the {width} x {height} image")
+                scene["camera"]["film"].update({"crop_offset_x": x0, "crop_offset_y": y0,
+                                                "crop_width": x1 - x0, "crop_height": y1 - y0})
     sky = doc["scenes"][0].get("extras", {}).get("sky")
     if sky:
         if sky.get("type") != "cie":
@@ -205,10 +216,10 @@ def main():
     ap.add_argument("--runs", type=int, default=8)
     ap.add_argument("--seed0", type=int, default=1)
     ap.add_argument("--filter", default="box", help="Mitsuba rfilter: box (fenestra's) or gaussian (Mitsuba's default)")
-    ap.add_argument("--rr-depth", type=int, default=5, help="rr_depth (Mitsuba's default 5)")
-    ap.add_argument("--integrator", default="ptracer", choices=["ptracer", "path"],
-                    help="ptracer (the light tracer, the sky seen directly hidden) or path (the path tracer, "
-                         "which shows it, through thin glass too)")
+    ap.add_argument("--rr-depth", type=int, default=5, help="ptracer rr_depth (Mitsuba's default 5)")
+    ap.add_argument("--integrator", default="ptracer", choices=("ptracer", "path"),
+                    help="Mitsuba's light tracer (default: fenestra's algorithm) or its path tracer")
+    ap.add_argument("--crop", help="x0,y0,x1,y1: render only this rectangle (x1, y1 exclusive)")
     ap.add_argument("--out", required=True, help="output prefix")
     ap.add_argument("--check-sky", action="store_true")
     args = ap.parse_args()
@@ -216,7 +227,15 @@ def main():
     import mitsuba as mi
     mi.set_variant("scalar_rgb")
     work = args.out + "_meshes"
-    d = scene_dict(mi, args.scene, args.width, args.spp, args.filter, work)
+    crop = None
+    if args.crop:
+        try:
+            crop = tuple(int(v) for v in args.crop.split(","))
+        except ValueError:
+            crop = ()
+        if len(crop) != 4:
+            sys.exit(f"--crop {args.crop}: expected x0,y0,x1,y1")
+    d = scene_dict(mi, args.scene, args.width, args.spp, args.filter, work, crop=crop)
     d["integrator"] = {"type": args.integrator, "max_depth": -1, "rr_depth": args.rr_depth,
                        "hide_emitters": args.integrator == "ptracer"}
     scene = mi.load_dict(d)
@@ -235,8 +254,8 @@ def main():
         mi.Bitmap(img).write(path)
         runs.append({"exr": path, "seed": seed, "render_seconds": secs})
         print(f"run {k + 1}: {secs:.2f} s -> {path}", flush=True)
-    json.dump({"scene": args.scene, "integrator": args.integrator, "width": args.width, "spp": args.spp,
-               "filter": args.filter,
+    json.dump({"scene": args.scene, "width": args.width, "spp": args.spp, "filter": args.filter,
+               "integrator": args.integrator, "crop": list(crop) if crop else None,
                "rr_depth": args.rr_depth, "mitsuba": mi.__version__, "runs": runs},
               open(args.out + ".json", "w"), indent=1)
 
