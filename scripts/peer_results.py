@@ -15,7 +15,10 @@ conversions (the thin glass, scripts/mitsuba_peer.py) does not count; it is prin
 the first fenestra configuration. Mitsuba renders with a box pixel filter (fenestra's: a camera
 connection lands in one pixel) and with its default, a Gaussian of standard deviation 0.5 px,
 which spreads each connection over about 3 pixels' worth of area and so trades resolution for
-noise.
+noise. `--integrator path` races Mitsuba's path tracer instead (the sky seen directly shown; a
+scene whose sun comes through thin glass needs its glass made an opening first, since a path
+tracer cannot reach a directional light through a specular sheet: scripts/scene_variant.py
+--opening).
 """
 import argparse
 import json
@@ -66,6 +69,8 @@ def main():
     ap.add_argument("--norm-roi", help="region whose mean sets each renderer's brightness scale "
                     "(default: the whole image); use it where the renderers differ outside --roi")
     ap.add_argument("--table-only", action="store_true", help="reuse the renders already in --out")
+    ap.add_argument("--integrator", default="ptracer", choices=("ptracer", "path"),
+                    help="Mitsuba's light tracer (default) or its path tracer")
     ap.add_argument("--out", required=True, help="output folder")
     a = ap.parse_args()
 
@@ -81,14 +86,15 @@ def main():
     scenes = {}
     for f in filters:
         d = mitsuba_peer.scene_dict(mi, a.scene, a.width, 1, f, os.path.join(a.out, "meshes"))
-        d["integrator"] = {"type": "ptracer", "max_depth": -1, "rr_depth": 5, "hide_emitters": True}
+        d["integrator"] = {"type": a.integrator, "max_depth": -1, "rr_depth": 5,
+                           "hide_emitters": a.integrator == "ptracer"}
         scenes[f] = (d, mi.load_dict(d))
     # Calibrate Mitsuba's sample count to --seconds with a short render.
     d, sc = scenes[filters[0]]
     t0 = time.perf_counter()
     mi.render(sc, seed=10**6, spp=8)
     spp = max(1, int(round(8 * a.seconds / (time.perf_counter() - t0))))
-    print(f"Mitsuba {mi.__version__}: {spp} light paths per pixel per render", flush=True)
+    print(f"Mitsuba {mi.__version__} {a.integrator}: {spp} samples per pixel per render", flush=True)
 
     for s in seeds:
         for c in fen:
@@ -124,7 +130,7 @@ def table(a, mi, seeds, fen, filters):
             runs.setdefault("fenestra " + c, []).append(
                 os.path.join(a.out, f"fen_{c.replace('+', '_').replace('=', '')}_{s}.exr"))
         for f in filters:
-            runs.setdefault("Mitsuba ptracer, " + f, []).append(
+            runs.setdefault(f"Mitsuba {a.integrator}, " + f, []).append(
                 os.path.join(a.out, f"mitsuba_{f}_{s}.exr"))
 
     region = region_of(a.roi)

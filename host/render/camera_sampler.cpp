@@ -7,6 +7,7 @@
 
 #include "io/image.h"
 #include "io/state_io.h"
+#include "render/pooled_variance.h"
 #include "util/error.h"
 
 namespace fen {
@@ -60,8 +61,7 @@ void CameraSampler::addPilot(const std::vector<float>& camera, std::uint64_t cam
         pilotY1_[p] += n * m;
         pilotY2_[p] += n * m * m;
         pilotM2_[p] += std::max(0.0, static_cast<double>(camera[4 * p + 3]));
-        const double between = pilotN_[p] > 0.0 ? std::max(0.0, pilotY2_[p] - pilotY1_[p] * pilotY1_[p] / pilotN_[p]) : 0.0;
-        sigma_[p] = pilotN_[p] > 1.0 ? std::sqrt((pilotM2_[p] + between) / (pilotN_[p] - 1.0)) : 0.0;
+        sigma_[p] = std::sqrt(pooledSampleVariance(pilotN_[p], pilotY1_[p], pilotY2_[p], pilotM2_[p]));
         brightest = std::max(brightest, pilotY1_[p] / std::max(pilotN_[p], 1.0));
     }
     if (pilotPass_ == 0) {

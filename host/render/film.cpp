@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "io/state_io.h"
+#include "render/pooled_variance.h"
 #include "util/fixed_point.h"
 
 namespace fen {
@@ -87,11 +88,7 @@ void BatchStatistics::addCamera(const std::vector<float>& camera, const std::vec
 
 double BatchStatistics::cameraSampleVar(std::size_t p) const
 {
-    const double n = camN_[p];
-    if (n < 2.0)
-        return 0.0;
-    const double between = std::max(0.0, camY2_[p] - camY1_[p] * camY1_[p] / n);
-    return (camM2_[p] + between) / (n - 1.0);
+    return pooledSampleVariance(camN_[p], camY1_[p], camY2_[p], camM2_[p]);
 }
 
 std::pair<double, double> BatchStatistics::roiCamera(std::size_t k) const
