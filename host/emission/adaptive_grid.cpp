@@ -6,6 +6,7 @@
 
 #include "io/state_io.h"
 #include "util/error.h"
+#include "util/fnv.h"
 
 namespace fen {
 
@@ -255,18 +256,13 @@ void AdaptiveGrid::setProbabilities(const std::vector<double>& p)
 
 std::uint64_t AdaptiveGrid::checksum() const
 {
-    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the cells' fields
-    const auto mix = [&h](const void* data, std::size_t n) {
-        const unsigned char* b = static_cast<const unsigned char*>(data);
-        for (std::size_t i = 0; i < n; ++i)
-            h = (h ^ b[i]) * 1099511628211ull;
-    };
+    Fnv f;  // over the cells' fields
     for (const GridCell& c : cells_) {
         const std::uint32_t id[8] = {c.sun ? 1u : 0u, c.region, c.depth, c.ix, c.iy, c.skyDepth, c.is, c.it};
-        mix(id, sizeof id);
-        mix(&c.prob, sizeof c.prob);
+        f.value(id);
+        f.value(c.prob);
     }
-    return h;
+    return f.h;
 }
 
 void AdaptiveGrid::save(StateWriter& w) const

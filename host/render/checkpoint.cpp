@@ -11,6 +11,7 @@
 #include "io/json_text.h"
 #include "io/output_files.h"
 #include "util/error.h"
+#include "util/fnv.h"
 
 namespace fen {
 
@@ -18,26 +19,6 @@ namespace {
 
 constexpr const char* kMagic = "FENESTRA CHECKPOINT 1\n";
 constexpr std::uint64_t kMaxBytes = std::uint64_t{8} << 30;  // a 16k x 16k image's sums fit
-
-struct Fnv {
-    std::uint64_t h = 1469598103934665603ull;
-    void add(const void* data, std::size_t n)
-    {
-        const unsigned char* b = static_cast<const unsigned char*>(data);
-        for (std::size_t i = 0; i < n; ++i)
-            h = (h ^ b[i]) * 1099511628211ull;
-    }
-    template <class T>
-    void value(const T& v)
-    {
-        add(&v, sizeof v);
-    }
-    void text(const std::string& s)
-    {
-        value(s.size());
-        add(s.data(), s.size());
-    }
-};
 
 std::string le64(std::uint64_t v)
 {

@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 
 #include "emission/emission_sphere.h"
 #include "emission/light_levels.h"
@@ -21,6 +20,7 @@
 #include "shared/fen_rng.h"
 #include "trace/device_bvh.h"
 #include "util/error.h"
+#include "util/fnv.h"
 
 namespace fen {
 
@@ -302,23 +302,17 @@ struct Renderer::Impl {
     // The sensors' cells, as a hash of their positions, normals and sides (0: none).
     std::string sensorFingerprint() const
     {
-        std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the cells' doubles
-        const auto mix = [&](double v) {
-            unsigned char b[8];
-            std::memcpy(b, &v, 8);
-            for (unsigned char c : b)
-                h = (h ^ c) * 1099511628211ull;
-        };
+        Fnv f;  // over the cells' doubles
         if (settings.sensors)
             for (const SensorCell& c : settings.sensors->cells) {
                 for (int k = 0; k < 3; ++k) {
-                    mix(c.position[k]);
-                    mix(c.normal[k]);
+                    f.value(c.position[k]);
+                    f.value(c.normal[k]);
                 }
-                mix(c.side_m);
+                f.value(c.side_m);
             }
         char hash[17];
-        std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(h));
+        std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(f.h));
         return cat(settings.sensors ? settings.sensors->cells.size() : 0, ":", hash);
     }
 
