@@ -244,26 +244,27 @@ std::uint64_t PathLoop::runFused(std::uint64_t base, std::uint64_t count, BatchC
     return done;
 }
 
-std::uint64_t PathLoop::cameraPassAlone(std::uint32_t batch)
+void PathLoop::cameraPass(std::uint32_t batch, std::uint64_t* ctr)
 {
     auto& q = ctx_.queue();
-    q.enqueueFillBuffer(counters_, cl_ulong(0), 0, FEN_CTR_COUNT * 8);
     params_.batch = batch;
     q.enqueueWriteBuffer(paramsBuf_, CL_FALSE, 0, sizeof params_, &params_);
     ocl::launch(ctx_, cameraPass_, "camera_pass", film_.pixels());
+    q.enqueueReadBuffer(counters_, CL_TRUE, 0, FEN_CTR_COUNT * 8, ctr);
+}
+
+std::uint64_t PathLoop::cameraPassAlone(std::uint32_t batch)
+{
+    ctx_.queue().enqueueFillBuffer(counters_, cl_ulong(0), 0, FEN_CTR_COUNT * 8);
     std::uint64_t ctr[FEN_CTR_COUNT] = {};
-    q.enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof ctr, ctr);
+    cameraPass(batch, ctr);
     return ctr[FEN_CTR_CAMERA_RAYS];
 }
 
 void PathLoop::endBatch(std::uint32_t batch, BatchCounts& counts)
 {
-    auto& q = ctx_.queue();
-    params_.batch = batch;
-    q.enqueueWriteBuffer(paramsBuf_, CL_FALSE, 0, sizeof params_, &params_);
-    ocl::launch(ctx_, cameraPass_, "camera_pass", film_.pixels());
     std::uint64_t ctr[FEN_CTR_COUNT] = {};
-    q.enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof ctr, ctr);
+    cameraPass(batch, ctr);
     counts.shadowRays += ctr[FEN_CTR_SHADOW_RAYS];
     counts.cameraRays += ctr[FEN_CTR_CAMERA_RAYS];
     counts.badContributions += ctr[FEN_CTR_BAD_CONTRIBUTIONS];

@@ -91,6 +91,9 @@ public:
 
 private:
     void warmUp();
+    // Launches the camera pass with batch `batch`'s random numbers, then reads the counters into
+    // ctr[FEN_CTR_COUNT].
+    void cameraPass(std::uint32_t batch, std::uint64_t* ctr);
     std::uint64_t runFused(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
                            const std::function<void(std::uint64_t, std::uint64_t)>& progress,
                            const std::function<bool()>& abort);
