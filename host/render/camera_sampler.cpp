@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "io/image.h"
 #include "io/state_io.h"
@@ -31,16 +32,32 @@ CameraSampler::CameraSampler(std::size_t pixels, std::uint32_t floor, CameraPass
       counts_(pixels, mode == CameraPassMode::Balanced ? kPilotSamples : floor_), sigma_(pixels, 0.0),
       pilotPass_(mode == CameraPassMode::Balanced && pixels > 0 ? 0 : 2)
 {
-    samplesPerBatch_ = static_cast<std::uint64_t>(counts_.empty() ? 0 : counts_[0]) * pixels;
-    maxCount_ = counts_.empty() ? 0 : counts_[0];
 }
 
-void CameraSampler::setCounts(std::uint32_t n)
+std::uint64_t CameraSampler::samplesPerBatch() const
 {
-    std::fill(counts_.begin(), counts_.end(), n);
-    samplesPerBatch_ = static_cast<std::uint64_t>(n) * pixels_;
-    maxCount_ = n;
+    return std::accumulate(counts_.begin(), counts_.end(), std::uint64_t{0});
 }
+
+std::uint32_t CameraSampler::maxCount() const
+{
+    return counts_.empty() ? 0u : *std::max_element(counts_.begin(), counts_.end());
+}
+
+namespace {
+
+// Calls f(q) for each of pixel p's neighbours (up to 8) in an image `width` x `height`.
+template <class F>
+void forEachNeighbour(std::size_t p, std::size_t width, std::size_t height, F f)
+{
+    const std::size_t x = p % width, y = p / width;
+    for (std::size_t yy = y > 0 ? y - 1 : 0; yy <= std::min(y + 1, height - 1); ++yy)
+        for (std::size_t xx = x > 0 ? x - 1 : 0; xx <= std::min(x + 1, width - 1); ++xx)
+            if (yy != y || xx != x)
+                f(yy * width + xx);
+}
+
+}  // namespace
 
 void CameraSampler::addPilot(const std::vector<float>& camera, std::uint64_t cameraRays, std::size_t width)
 {
@@ -49,9 +66,8 @@ void CameraSampler::addPilot(const std::vector<float>& camera, std::uint64_t cam
     if (pilotPass_ == 0) {
         pilotN_.assign(pixels_, 0.0);
         pilotY1_ = pilotY2_ = pilotM2_ = pilotN_;
-        raysPerSample_ = samplesPerBatch_ > 0
-                             ? std::max(1.0, static_cast<double>(cameraRays) / static_cast<double>(samplesPerBatch_))
-                             : 1.0;
+        const double samples = static_cast<double>(samplesPerBatch());
+        raysPerSample_ = samples > 0.0 ? std::max(1.0, static_cast<double>(cameraRays) / samples) : 1.0;
     }
     double brightest = 0.0;
     for (std::size_t p = 0; p < pixels_; ++p) {
@@ -64,33 +80,26 @@ void CameraSampler::addPilot(const std::vector<float>& camera, std::uint64_t cam
         sigma_[p] = std::sqrt(pooledSampleVariance(pilotN_[p], pilotY1_[p], pilotY2_[p], pilotM2_[p]));
         brightest = std::max(brightest, pilotY1_[p] / std::max(pilotN_[p], 1.0));
     }
+    // What varies less than this across a pixel (a thousandth of the brightest pixel) is no edge:
+    // a sky's own gradient is less.
+    const double tau = 1e-3 * brightest;
+    const std::size_t height = pixels_ / width;
+    const auto mean = [this](std::size_t q) { return pilotY1_[q] / pilotN_[q]; };
     if (pilotPass_ == 0) {
         // The second pass: every pixel near an edge -- next to one whose samples varied, or whose
-        // mean differs from its own -- by more than a thousandth of the brightest pixel (a sky's
-        // own gradient across a pixel is less). The second test finds an edge that runs along
-        // pixel boundaries, whose pixels are nearly all one side and so rarely vary.
-        const double tau = 1e-3 * brightest;
-        const std::size_t h = pixels_ / width;
-        samplesPerBatch_ = 0;
-        maxCount_ = 0;
-        for (std::size_t y = 0; y < h; ++y)
-            for (std::size_t x = 0; x < width; ++x) {
-                const double mp = pilotY1_[y * width + x] / pilotN_[y * width + x];
-                bool near = false;
-                for (std::size_t yy = y > 0 ? y - 1 : 0; yy <= std::min(y + 1, h - 1) && !near; ++yy)
-                    for (std::size_t xx = x > 0 ? x - 1 : 0; xx <= std::min(x + 1, width - 1); ++xx) {
-                        const std::size_t q = yy * width + xx;
-                        if ((yy != y || xx != x) && (sigma_[q] > tau || std::abs(pilotY1_[q] / pilotN_[q] - mp) > tau)) {
-                            near = true;
-                            break;
-                        }
-                    }
-                counts_[y * width + x] = near ? kPilotRefineSamples : 0u;
-                samplesPerBatch_ += counts_[y * width + x];
-                maxCount_ = std::max(maxCount_, counts_[y * width + x]);
-            }
+        // mean differs from its own, by more than tau. The second test finds an edge that runs
+        // along pixel boundaries, whose pixels are nearly all one side and so rarely vary.
+        bool any = false;
+        for (std::size_t p = 0; p < pixels_; ++p) {
+            bool near = false;
+            forEachNeighbour(p, width, height, [&](std::size_t q) {
+                near = near || sigma_[q] > tau || std::abs(mean(q) - mean(p)) > tau;
+            });
+            counts_[p] = near ? kPilotRefineSamples : 0u;
+            any = any || near;
+        }
         pilotPass_ = 1;
-        if (samplesPerBatch_ > 0)
+        if (any)
             return;
     }
     // A pixel next to an edge whose samples all agreed may still hold a sliver of it: 1 - (1 - p)^N
@@ -99,23 +108,16 @@ void CameraSampler::addPilot(const std::vector<float>& camera, std::uint64_t cam
     // contrast to its neighbours' means squared: the pure sky next to a mullion then costs a few
     // samples a batch, and a pixel 99 % sky is not left at one.
     if (pilotPass_ == 1) {
-        const std::size_t h = pixels_ / width;
         std::vector<double> prior(pixels_, 0.0);
-        for (std::size_t y = 0; y < h; ++y)
-            for (std::size_t x = 0; x < width; ++x) {
-                const std::size_t p = y * width + x;
-                if (counts_[p] == 0 || sigma_[p] > 1e-3 * brightest)
-                    continue;  // not looked at again, or it varied: its own estimate stands
-                const double mp = pilotY1_[p] / pilotN_[p], N = pilotN_[p];
-                double contrast = 0.0;
-                for (std::size_t yy = y > 0 ? y - 1 : 0; yy <= std::min(y + 1, h - 1); ++yy)
-                    for (std::size_t xx = x > 0 ? x - 1 : 0; xx <= std::min(x + 1, width - 1); ++xx) {
-                        const std::size_t q = yy * width + xx;
-                        if (pilotN_[q] > 0.0)
-                            contrast = std::max(contrast, std::abs(pilotY1_[q] / pilotN_[q] - mp));
-                    }
-                prior[p] = contrast * std::sqrt((N + 1.0) / ((N + 2.0) * (N + 3.0)));
-            }
+        for (std::size_t p = 0; p < pixels_; ++p) {
+            if (counts_[p] == 0 || sigma_[p] > tau)
+                continue;  // not looked at again, or it varied: its own estimate stands
+            double contrast = 0.0;
+            forEachNeighbour(p, width, height,
+                             [&](std::size_t q) { contrast = std::max(contrast, std::abs(mean(q) - mean(p))); });
+            const double N = pilotN_[p];
+            prior[p] = contrast * std::sqrt((N + 1.0) / ((N + 2.0) * (N + 3.0)));
+        }
         for (std::size_t p = 0; p < pixels_; ++p)
             sigma_[p] = std::max(sigma_[p], prior[p]);
     }
@@ -124,14 +126,16 @@ void CameraSampler::addPilot(const std::vector<float>& camera, std::uint64_t cam
     pilotY1_.clear();
     pilotY2_.clear();
     pilotM2_.clear();
-    setCounts(floor_);  // until the light tracer's variance is known
+    std::fill(counts_.begin(), counts_.end(), floor_);  // until the light tracer's variance is known
 }
 
 void CameraSampler::afterBatch(const std::vector<double>& lightLuminance, double weight, std::uint64_t lightRays)
 {
+    samplesTotal_ += samplesPerBatch();
+    if (mode_ == CameraPassMode::Fixed)
+        return;  // its counts never change
     if (lightLuminance.size() != pixels_)
         throw std::logic_error("CameraSampler::afterBatch: one value per pixel");
-    samplesTotal_ += samplesPerBatch_;
     if (!lastLight_.empty() && weight > 0.0 && lastWeight_ > 0.0) {
         double d2 = 0.0;
         for (std::size_t p = 0; p < pixels_; ++p) {
@@ -151,25 +155,17 @@ void CameraSampler::allocate(double weight, std::uint64_t lightRays)
     if (pairs_ == 0 || !(weight > 0.0) || needsPilot())
         return;  // the light tracer's variance is not known yet: the floor stays
     const double lightVar = lightVarSum_ / static_cast<double>(pairs_) / weight;  // the next batch's, all pixels
-    double sigmaSum = 0.0;
-    for (double v : sigma_)
-        sigmaSum += v;
-    if (mode_ == CameraPassMode::Balanced) {
-        const double T = static_cast<double>(lightRays), c = raysPerSample_;
-        // The optimum; with no light-tracing noise to balance against, as many as the caps allow.
-        double k = lightVar > 0.0 ? std::sqrt(T / (c * lightVar)) : std::numeric_limits<double>::infinity();
-        // The camera pass traces no more rays than the light tracer: a scene whose light never
-        // reaches the camera must not turn into a sky renderer.
-        const double spare = T / c - static_cast<double>(floor_) * static_cast<double>(pixels_);
-        k = sigmaSum > 0.0 ? std::min(k, std::max(0.0, spare) / sigmaSum) : 0.0;
-        samplesPerBatch_ = 0;
-        maxCount_ = 0;
-        for (std::size_t p = 0; p < pixels_; ++p) {
-            const double n = std::min(std::round(k * sigma_[p]), static_cast<double>(kMaxPerPixel));
-            counts_[p] = std::max(floor_, static_cast<std::uint32_t>(n));
-            samplesPerBatch_ += counts_[p];
-            maxCount_ = std::max(maxCount_, counts_[p]);
-        }
+    const double sigmaSum = std::accumulate(sigma_.begin(), sigma_.end(), 0.0);
+    const double T = static_cast<double>(lightRays), c = raysPerSample_;
+    // The optimum; with no light-tracing noise to balance against, as many as the caps allow.
+    double k = lightVar > 0.0 ? std::sqrt(T / (c * lightVar)) : std::numeric_limits<double>::infinity();
+    // The camera pass traces no more rays than the light tracer: a scene whose light never
+    // reaches the camera must not turn into a sky renderer.
+    const double spare = T / c - static_cast<double>(floor_) * static_cast<double>(pixels_);
+    k = sigmaSum > 0.0 ? std::min(k, std::max(0.0, spare) / sigmaSum) : 0.0;
+    for (std::size_t p = 0; p < pixels_; ++p) {
+        const double n = std::min(std::round(k * sigma_[p]), static_cast<double>(kMaxPerPixel));
+        counts_[p] = std::max(floor_, static_cast<std::uint32_t>(n));
     }
     double cameraVar = 0.0;
     for (std::size_t p = 0; p < pixels_; ++p)
@@ -203,14 +199,10 @@ void CameraSampler::load(StateReader& r)
     const std::vector<std::uint64_t> counts = r.u64s("camera.counts", pixels_);
     if (counts.size() != pixels_)
         r.fail("camera.counts", "not one count per pixel");
-    samplesPerBatch_ = 0;
-    maxCount_ = 0;
     for (std::size_t p = 0; p < pixels_; ++p) {
         if (counts[p] < floor_ || counts[p] > kMaxPerPixel)
             r.fail("camera.counts", "a count outside the floor and 4096");
         counts_[p] = static_cast<std::uint32_t>(counts[p]);
-        samplesPerBatch_ += counts[p];
-        maxCount_ = std::max(maxCount_, counts_[p]);
     }
     sigma_ = r.f64s("camera.sigma", pixels_, true);
     for (const double v : sigma_)

@@ -54,7 +54,7 @@ public:
     CameraPassMode mode() const { return mode_; }
     // Samples per pixel for the next camera pass (the pilot's while it is needed).
     const std::vector<std::uint32_t>& counts() const { return counts_; }
-    std::uint64_t samplesPerBatch() const { return samplesPerBatch_; }
+    std::uint64_t samplesPerBatch() const;
 
     // Balanced and not yet piloted: the next camera pass should be a pilot pass (counts() are its;
     // `pilotPass()` its number, 0 or 1, for its random numbers).
@@ -66,14 +66,14 @@ public:
 
     // After a counted batch of weight `weight` (film.h): `lightLuminance` the light-traced part of
     // its image (cd/m^2 per pixel), `lightRays` its extension and shadow rays. Counts the batch's
-    // samples and sets the next batch's counts.
+    // samples and sets the next batch's counts (fixed mode: only counts; the rest is not read).
     void afterBatch(const std::vector<double>& lightLuminance, double weight, std::uint64_t lightRays);
 
-    // What it did, for the JSON: samples in all, the most a pixel got in a batch, pixels above the
-    // floor, and the camera pass's predicted share of the next batch's image variance (0 when not
+    // What it did, for the JSON: samples in all, the most a pixel gets in the next batch, pixels
+    // above the floor, and the camera pass's predicted share of the next batch's image variance (0 when not
     // known yet; balanced mode only, since only its pilot measures the pixels' variance).
     std::uint64_t samplesTotal() const { return samplesTotal_; }
-    std::uint32_t maxCount() const { return maxCount_; }
+    std::uint32_t maxCount() const;
     std::uint64_t pixelsAboveFloor() const;
     double errorShare() const { return errorShare_; }
 
@@ -82,7 +82,6 @@ public:
 
 private:
     void allocate(double weight, std::uint64_t lightRays);
-    void setCounts(std::uint32_t n);
     std::size_t pixels_;
     std::uint32_t floor_;
     CameraPassMode mode_;
@@ -95,8 +94,7 @@ private:
     double lastWeight_ = 0.0;
     double lightVarSum_ = 0.0;           // sum over batch pairs of the s^2 estimates (all pixels)
     std::uint64_t pairs_ = 0;
-    std::uint64_t samplesPerBatch_ = 0, samplesTotal_ = 0;
-    std::uint32_t maxCount_ = 0;
+    std::uint64_t samplesTotal_ = 0;
     double errorShare_ = 0.0;
 };
 

@@ -258,20 +258,21 @@ struct Renderer::Impl {
     void countBatch(const BatchImage& img, const BatchCounts& before, const BatchCounts& after, BatchStatistics& stats)
     {
         const double w = strategy->batchWeight();
-        if (cameraSampler.mode() == CameraPassMode::Balanced) {
-            stats.add(img.rgb, w);  // the light-traced part; the camera's apart, weighed by its samples
-            stats.addCamera(img.camera, cameraSampler.counts());
-        } else {
-            // Fixed: the same samples every batch, so the camera pass is part of the batch's image
-            // (and the image is the one this mode always gave, bit for bit).
+        if (sensorStats)
+            sensorStats->add(img.sensorLux, w);
+        if (cameraSampler.mode() == CameraPassMode::Fixed) {
+            // The same samples every batch, so the camera pass is part of the batch's image (and
+            // the image is the one this mode always gave, bit for bit).
             std::vector<double> whole = img.rgb;
             for (std::size_t p = 0; p < film.pixels(); ++p)
                 for (int c = 0; c < 3; ++c)
                     whole[3 * p + c] += img.camera[4 * p + c];
             stats.add(whole, w);
+            cameraSampler.afterBatch({}, w, 0);
+            return;
         }
-        if (sensorStats)
-            sensorStats->add(img.sensorLux, w);
+        stats.add(img.rgb, w);  // the light-traced part; the camera's apart, weighed by its samples
+        stats.addCamera(img.camera, cameraSampler.counts());
         std::vector<double> light(film.pixels());
         for (std::size_t p = 0; p < light.size(); ++p)
             light[p] = luminance(img.rgb[3 * p], img.rgb[3 * p + 1], img.rgb[3 * p + 2]);
