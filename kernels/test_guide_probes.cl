@@ -3,7 +3,7 @@
  */
 #include "lib/guide.h"
 
-/* n draws from (learned) slot `slot`'s table: out[i] = (u1, u2, d(b), as_float(key)). */
+/* n draws from (learned) slot `slot`'s table: out[i] = (u1, u2, d(b), as_float(global leaf)). */
 kernel void guide_sample_probe(global const GuideParams* guide_params, global const uint* guide_tables,
                                uint slot, uint seed, uint n, global float4* out)
 {
@@ -13,7 +13,8 @@ kernel void guide_sample_probe(global const GuideParams* guide_params, global co
     const Guide g = {guide_params, guide_tables};
     uint key;
     float d;
-    const float2 sq = guide_sample(&g, slot, rng_bits(seed, 0u, i, 0u, 0u, FEN_RNG_GUIDE), &key, &d);
+    const float2 sq = guide_sample(&g, guide_record_of(&g, slot), rng_bits(seed, 0u, i, 0u, 0u, FEN_RNG_GUIDE),
+                                   &key, &d);
     out[i] = (float4)(sq, d, as_float(key));
 }
 
@@ -24,4 +25,15 @@ kernel void guide_slot_probe(global const GuideParams* guide_params, global cons
     const uint i = get_global_id(0);
     if (i < count)
         slot[i] = guide_slot(guide_params, x[i].xyz, n[i].xyz);
+}
+
+/* The global leaf of slot `slot`'s tree that point sq[i] of the square lies in. */
+kernel void guide_leaf_probe(global const GuideParams* guide_params, global const uint* guide_tables,
+                             uint slot, global const float2* sq, uint count, global uint* leaf)
+{
+    const uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    const Guide g = {guide_params, guide_tables};
+    leaf[i] = guide_leaf(&g, guide_record_of(&g, slot), sq[i]);
 }

@@ -56,6 +56,12 @@ public:
                           "With adaptive --adaptive-guide on: the uniform share kept in every learned bounce table (default 0.25)");
         render.add_option("--adaptive-guide-voxels", guideVoxels_,
                           "With adaptive --adaptive-guide on: guide voxels across the scene's bounding radius (default 4)");
+        render.add_option("--adaptive-guide-depth", guideDepth_,
+                          "With adaptive --adaptive-guide on: finest direction leaves, 2^-D of the square's side, 3..12 (3: a fixed 8 x 8)");
+        render.add_option("--adaptive-guide-split", guideSplit_,
+                          "With adaptive --adaptive-guide on: split a direction leaf holding more than this share of its slot (default 0.02)");
+        render.add_option("--adaptive-guide-memory", guideMemory_,
+                          "With adaptive --adaptive-guide on: MiB of device memory for the guide's trees (default 256)");
         render.add_option("--adaptive-target", target_,
                           "With adaptive: minimise the absolute (default) or the relative squared error per pixel");
         render.add_option("--adaptive-max-cells", maxCells_,
@@ -74,7 +80,7 @@ public:
         }
         const bool tuned = estimate_ || initialSkyDepth_ || maxSkyDepth_ || initialDepth_ || maxDepth_ ||
                            defensive_ || diskShare_ || split_ || firstPass_ || maxCells_ || prior_ || weights_ ||
-                           target_ || guide_ || guideShare_ || guideVoxels_;
+                           target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideMemory_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
@@ -100,13 +106,16 @@ public:
             a.guide.enabled = choice("--adaptive-guide", *guide_, "on", "off");
         a.guide.share = guideShare_.value_or(a.guide.share);
         a.guide.voxelsAcross = guideVoxels_.value_or(a.guide.voxelsAcross);
+        a.guide.maxDepth = guideDepth_.value_or(a.guide.maxDepth);
+        a.guide.splitShare = guideSplit_.value_or(a.guide.splitShare);
+        a.guide.memoryMiB = guideMemory_.value_or(a.guide.memoryMiB);
         validateAdaptiveOptions(a);
     }
 
 private:
     std::optional<std::string> base_, estimate_, weights_, target_, guide_;
-    std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_;
-    std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_;
+    std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_;
+    std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideMemory_;
     std::optional<std::uint64_t> firstPass_;
     std::optional<std::uint32_t> maxCells_;
 };
@@ -164,7 +173,10 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
             {"max_cells", a.maxCells},
             {"guide", a.guide.enabled},
             {"guide_share", a.guide.share},
-            {"guide_voxels", a.guide.voxelsAcross}};
+            {"guide_voxels", a.guide.voxelsAcross},
+            {"guide_depth", a.guide.maxDepth},
+            {"guide_split", a.guide.splitShare},
+            {"guide_memory_mib", a.guide.memoryMiB}};
 }
 
 }  // namespace fen

@@ -1,15 +1,17 @@
-// first_bounce_guide.cpp — the first-bounce guide's learning (first_bounce_guide.h).
+// first_bounce_guide.cpp — the first-bounce guide's trees, learning and tables (first_bounce_guide.h).
 #include "scatter/first_bounce_guide.h"
 
 #include <algorithm>
-#include <cmath>
+#include <chrono>
 #include <cstring>
+#include <functional>
 #include <numeric>
 
 #include "io/state_io.h"
 #include "util/error.h"
 #include "util/integer_cdf.h"
 #include "util/fixed_point.h"
+#include "util/fnv.h"
 
 namespace fen {
 
@@ -18,8 +20,28 @@ namespace {
 // The device scales v by 2^20 and sums v^2 in 128-bit fixed point: v (what a unit of weight
 // delivers, in units of a pixel's solid angle) between about 1e-6 and 1e13 registers and fits.
 constexpr int kStatsFixedPointBits = 20;
+constexpr int kInitialNodes = 21;   // (4^3 - 1) / 3: the nodes of a full tree of depth 3
+constexpr int kInitialLeaves = 64;  // 4^FEN_GUIDE_INITIAL_DEPTH
+static_assert(FEN_GUIDE_INITIAL_DEPTH == 3, "kInitialNodes, kInitialLeaves assume depth 3");
+static_assert(FEN_GUIDE_MAX_DEPTH <= 14, "a leaf's corner has 14 bits per axis");
+// Device bytes per leaf: its statistics, its entry, up to two alias columns, a third of a node.
+constexpr double kBytesPerLeaf = 8.0 * FEN_GUIDE_STATS_WORDS + 8.0 + 16.0 + 16.0 / 3.0;
+constexpr double kMiB = 1024.0 * 1024.0;
+
+std::uint32_t floatBits(float f)
+{
+    std::uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
 
 }  // namespace
+
+bool FirstBounceGuide::isInitial(const Tree& t)
+{
+    return t.nodes.size() == kInitialNodes &&
+           std::all_of(t.leaves.begin(), t.leaves.end(), [](const Leaf& l) { return l.depth == FEN_GUIDE_INITIAL_DEPTH; });
+}
 
 void validateGuideOptions(const GuideOptions& o)
 {
@@ -34,89 +56,254 @@ void validateGuideOptions(const GuideOptions& o)
         throw Error(cat("guide minimum contributions ", o.minConnections, " must be at least 1"));
     if (!(o.minGain >= 1.0))
         throw Error(cat("guide minimum gain ", o.minGain, " must be at least 1"));
+    if (o.maxDepth < FEN_GUIDE_INITIAL_DEPTH || o.maxDepth > FEN_GUIDE_MAX_DEPTH)
+        throw Error(cat("--adaptive-guide-depth ", o.maxDepth, ": must be in ", FEN_GUIDE_INITIAL_DEPTH, "..",
+                        FEN_GUIDE_MAX_DEPTH, " (", FEN_GUIDE_INITIAL_DEPTH, ": the initial 8 x 8 leaves, never split)"));
+    if (!(o.splitShare > 0.0 && o.splitShare <= 1.0))
+        throw Error(cat("--adaptive-guide-split ", o.splitShare, ": must be in (0, 1]"));
+    if (!(o.minLeafConnections >= 1.0))
+        throw Error(cat("guide minimum contributions per leaf ", o.minLeafConnections, " must be at least 1"));
+    // The trees' initial 8 x 8 leaves must fit, with room to refine.
+    const double initialMiB = o.slots * (16.0 + 16.0 * kInitialNodes + kBytesPerLeaf * kInitialLeaves) / kMiB;
+    if (!(o.memoryMiB >= 2.0 * initialMiB && o.memoryMiB <= 65536.0))
+        throw Error(cat("--adaptive-guide-memory ", o.memoryMiB, ": must be in ", std::ceil(2.0 * initialMiB),
+                        "..65536 MiB (twice what the ", o.slots, " slots' initial trees take)"));
+}
+
+FirstBounceGuide::Tree FirstBounceGuide::initialTree()
+{
+    Tree t;
+    // Full to FEN_GUIDE_INITIAL_DEPTH, in the order the refinement copies trees (depth first).
+    std::function<std::int32_t(std::uint32_t, std::uint32_t, std::uint32_t)> node =
+        [&](std::uint32_t x0, std::uint32_t y0, std::uint32_t depth) {
+            const auto at = static_cast<std::int32_t>(t.nodes.size());
+            t.nodes.push_back({});
+            const std::uint32_t half = 1u << (FEN_GUIDE_MAX_DEPTH - depth - 1);
+            for (std::uint32_t q = 0; q < 4; ++q) {
+                const std::uint32_t cx = x0 + (q & 1u) * half, cy = y0 + (q >> 1) * half;
+                std::int32_t c;
+                if (depth + 1 < FEN_GUIDE_INITIAL_DEPTH) {
+                    c = node(cx, cy, depth + 1);
+                } else {
+                    Leaf l;
+                    l.x0 = cx;
+                    l.y0 = cy;
+                    l.depth = depth + 1;
+                    c = ~static_cast<std::int32_t>(t.leaves.size());
+                    t.leaves.push_back(l);
+                }
+                t.nodes[at][q] = c;
+            }
+            return at;
+        };
+    node(0, 0, 0);
+    return t;
 }
 
 FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm::dvec3 centre, double radius_m)
     : ctx_(ctx), opt_(o)
 {
     validateGuideOptions(opt_);
-    const std::uint32_t slots = opt_.enabled ? opt_.slots : 1u;
-    const std::size_t boxes = std::size_t{slots} * FEN_GUIDE_BINS;
     const double voxel_m = std::max(radius_m, 1e-6) / opt_.voxelsAcross;
     deviceParams_.lattice = {float(centre.x - radius_m), float(centre.y - radius_m), float(centre.z - radius_m),
                              float(1.0 / voxel_m)};
-    deviceParams_.slots = opt_.enabled ? slots : 0u;
     deviceParams_.stats_scale = static_cast<float>(std::ldexp(1.0, kStatsFixedPointBits));
-    deviceParams_.alias_shift = 32u - 6u;  // FEN_GUIDE_BINS = 2^6 columns
-    static_assert(FEN_GUIDE_BINS == 64, "alias_shift assumes 64 boxes");
-    deviceParams_.entries = (slots / 32 + 3) / 4 + 1;  // uint4s of the bitmap, rounded up
-    sumSq_.assign(boxes, 0.0);
-    connections_.assign(boxes, 0.0);
+    const std::size_t slots = opt_.enabled ? opt_.slots : 0u;
+    deviceParams_.slots = static_cast<std::uint32_t>(slots);
+    if (opt_.enabled) {
+        trees_.assign(slots, initialTree());
+        const double fixedBytes = slots * 16.0 * (1.0 + 1.0);  // records, a node per slot beyond L/3
+        leafCapacity_ = static_cast<std::size_t>((opt_.memoryMiB * kMiB - fixedBytes) / kBytesPerLeaf);
+        nodeCapacity_ = leafCapacity_ / 3 + slots;
+        columnCapacity_ = 2 * leafCapacity_;
+    } else {
+        leafCapacity_ = nodeCapacity_ = columnCapacity_ = 1;  // placeholders the kernels never read
+    }
+    deviceParams_.nodes_at = static_cast<std::uint32_t>(4 * std::max<std::size_t>(slots, 1));
+    deviceParams_.leaves_at = static_cast<std::uint32_t>(deviceParams_.nodes_at + 4 * nodeCapacity_);
+    deviceParams_.columns_at = static_cast<std::uint32_t>(deviceParams_.leaves_at + 2 * leafCapacity_);
+    const std::size_t tableWords = deviceParams_.columns_at + 2 * columnCapacity_;
+    if (tableWords >= (std::size_t{1} << 32))
+        throw Error(cat("--adaptive-guide-memory ", opt_.memoryMiB, ": the tables would pass 2^32 words"));
     rebuild();
     const auto add = [this](std::size_t bytes) {
         deviceBytes_ += bytes;
         return bytes;
     };
     params_ = ctx_.buffer(CL_MEM_READ_ONLY, add(sizeof deviceParams_), "guide parameters", &deviceParams_);
-    tables_ = ctx_.buffer(CL_MEM_READ_ONLY, add(tablesHost_.size() * 4), "guide tables", tablesHost_.data());
-    stats_ = ctx_.buffer(CL_MEM_READ_WRITE, add(boxes * FEN_GUIDE_STATS_WORDS * 8), "guide statistics");
+    tables_ = ctx_.buffer(CL_MEM_READ_ONLY, add(tableWords * 4), "guide tables");
+    stats_ = ctx_.buffer(CL_MEM_READ_WRITE, add(leafCapacity_ * FEN_GUIDE_STATS_WORDS * 8), "guide statistics");
+    upload();
     clearStats();
 }
 
 void FirstBounceGuide::clearStats()
 {
-    ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, sumSq_.size() * FEN_GUIDE_STATS_WORDS * 8);
+    ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0,
+                                   std::max<std::size_t>(leafCount_, 1) * FEN_GUIDE_STATS_WORDS * 8);
 }
 
-// Every slot's table: learned where it has seen enough, uniform (and marked so) elsewhere.
+// Splits every leaf that held more than splitShare of its slot's m = sqrt(S A) in the pass just
+// read (`pass`: per slot and leaf, that pass's S and contributions) and saw minLeafConnections
+// contributions in it, largest shares first while the capacity lasts. Only the pass's own
+// statistics decide: the quarters a split leaf hands its children are a guess, not evidence of
+// more detail. Returns the splits made.
+std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
+{
+    struct Candidate {
+        double share;
+        std::uint32_t slot;
+        std::int32_t leaf;
+    };
+    std::vector<Candidate> cand;
+    for (std::uint32_t s = 0; s < trees_.size(); ++s) {
+        const Tree& t = trees_[s];
+        double seen = 0.0, total = 0.0;
+        for (std::size_t i = 0; i < t.leaves.size(); ++i) {
+            seen += t.leaves[i].connections;
+            total += std::sqrt(pass[s][i].sumSq * t.leaves[i].area());
+        }
+        if (!(seen >= opt_.minConnections && total > 0.0))
+            continue;
+        for (std::size_t i = 0; i < t.leaves.size(); ++i) {
+            const Leaf& l = t.leaves[i];
+            const double share = std::sqrt(pass[s][i].sumSq * l.area()) / total;
+            if (static_cast<int>(l.depth) < opt_.maxDepth && pass[s][i].connections >= opt_.minLeafConnections &&
+                share > opt_.splitShare)
+                cand.push_back({share, s, static_cast<std::int32_t>(i)});
+        }
+    }
+    std::sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) {
+        return a.share != b.share ? a.share > b.share : (a.slot != b.slot ? a.slot < b.slot : a.leaf < b.leaf);
+    });
+    std::size_t nodes = 0;
+    for (const Tree& t : trees_)
+        nodes += t.nodes.size();
+    const std::size_t room = std::min((leafCapacity_ - leafCount_) / 3, nodeCapacity_ - nodes);
+    const std::size_t made = std::min(room, cand.size());
+    deferredSplits_ = cand.size() - made;
+    std::vector<std::vector<char>> split(trees_.size());
+    for (std::size_t k = 0; k < made; ++k) {
+        auto& mark = split[cand[k].slot];
+        mark.resize(trees_[cand[k].slot].leaves.size(), 0);
+        mark[static_cast<std::size_t>(cand[k].leaf)] = 1;
+    }
+    for (std::size_t s = 0; s < trees_.size(); ++s) {
+        if (split[s].empty())
+            continue;
+        const Tree& old = trees_[s];
+        Tree t;
+        std::function<std::int32_t(std::int32_t)> copy = [&](std::int32_t n) {
+            const auto at = static_cast<std::int32_t>(t.nodes.size());
+            t.nodes.push_back({});
+            for (int q = 0; q < 4; ++q) {
+                const std::int32_t c = old.nodes[static_cast<std::size_t>(n)][q];
+                std::int32_t made_c;
+                if (c >= 0) {
+                    made_c = copy(c);
+                } else if (!split[s][static_cast<std::size_t>(~c)]) {
+                    made_c = ~static_cast<std::int32_t>(t.leaves.size());
+                    t.leaves.push_back(old.leaves[static_cast<std::size_t>(~c)]);
+                } else {
+                    // Four children with a quarter of the statistics each: the uniform guess until
+                    // the next pass shows more.
+                    const Leaf& p = old.leaves[static_cast<std::size_t>(~c)];
+                    made_c = static_cast<std::int32_t>(t.nodes.size());
+                    t.nodes.push_back({});
+                    const std::uint32_t half = 1u << (FEN_GUIDE_MAX_DEPTH - p.depth - 1);
+                    for (std::uint32_t k = 0; k < 4; ++k) {
+                        Leaf l = p;
+                        l.sumSq = p.sumSq / 4.0;
+                        l.connections = p.connections / 4.0;
+                        l.depth = p.depth + 1;
+                        l.x0 = p.x0 + (k & 1u) * half;
+                        l.y0 = p.y0 + (k >> 1) * half;
+                        t.nodes[static_cast<std::size_t>(made_c)][k] = ~static_cast<std::int32_t>(t.leaves.size());
+                        t.leaves.push_back(l);
+                    }
+                }
+                t.nodes[static_cast<std::size_t>(at)][q] = made_c;
+            }
+            return at;
+        };
+        copy(0);
+        trees_[s] = std::move(t);
+    }
+    return made;
+}
+
+// Every slot's table: learned where it has seen enough and the table promises minGain, the
+// cosine elsewhere; then the flat layout of fen_guide.h.
 void FirstBounceGuide::rebuild()
 {
-    const std::size_t slots = sumSq_.size() / FEN_GUIDE_BINS;
-    const std::size_t entries = std::size_t{deviceParams_.entries} * 4;
-    tablesHost_.assign(entries + slots * 4 * FEN_GUIDE_BINS, 0u);
-    densityHost_.assign(slots * FEN_GUIDE_BINS, 1.0f);
-    learnedSlots_ = candidateSlots_ = 0;
-    std::vector<double> w(FEN_GUIDE_BINS);
-    const auto bits = [](float f) {
-        std::uint32_t u;
-        std::memcpy(&u, &f, 4);
-        return u;
-    };
-    for (std::size_t s = 0; s < slots; ++s) {
-        const double* S = sumSq_.data() + s * FEN_GUIDE_BINS;
-        double total = 0.0, seen = 0.0, cosine = 0.0;
-        for (int b = 0; b < FEN_GUIDE_BINS; ++b) {
-            total += std::sqrt(S[b]);
-            cosine += S[b];
-            seen += connections_[s * FEN_GUIDE_BINS + b];
+    learnedSlots_ = candidateSlots_ = maxDepthSeen_ = 0;
+    leafCount_ = 0;
+    std::vector<double> w;
+    for (Tree& t : trees_) {
+        t.learned = false;
+        t.alias.clear();
+        double seen = 0.0, total = 0.0, cosine = 0.0;
+        for (Leaf& l : t.leaves) {
+            l.density = 1.0f;
+            seen += l.connections;
+            total += std::sqrt(l.sumSq * l.area());
+            cosine += l.sumSq;
+            maxDepthSeen_ = std::max(maxDepthSeen_, l.depth);
         }
-        if (!(opt_.enabled && seen >= opt_.minConnections && total > 0.0))
-            continue;  // unlearned: the kernels never read its columns
+        leafCount_ += t.leaves.size();
+        if (!(seen >= opt_.minConnections && total > 0.0))
+            continue;  // the cosine: the kernels read only the tree, for the record
         ++candidateSlots_;
-        for (int b = 0; b < FEN_GUIDE_BINS; ++b)
-            w[b] = (1.0 - opt_.share) * std::sqrt(S[b]) / total + opt_.share / FEN_GUIDE_BINS;
-        const IntegerCdf t = makeIntegerCdf(w);
-        if (t.aliasShift != deviceParams_.alias_shift)
-            throw Error("guide table: unexpected alias layout");
+        w.resize(t.leaves.size());
+        for (std::size_t b = 0; b < w.size(); ++b) {
+            const Leaf& l = t.leaves[b];
+            w[b] = (1.0 - opt_.share) * std::sqrt(l.sumSq * l.area()) / total + opt_.share * l.area();
+        }
+        const IntegerCdf cdf = makeIntegerCdf(w);
         double guided = 0.0;  // sum S / d under the new table
-        for (int b = 0; b < FEN_GUIDE_BINS; ++b)
-            guided += S[b] / (FEN_GUIDE_BINS * t.probability(b));
+        for (std::size_t b = 0; b < w.size(); ++b)
+            guided += t.leaves[b].sumSq * t.leaves[b].area() / cdf.probability(b);
         if (!(cosine >= opt_.minGain * guided))
             continue;  // too little to gain: the cosine, no table read
         ++learnedSlots_;
-        tablesHost_[s / 32] |= 1u << (s % 32);
-        float* d = densityHost_.data() + s * FEN_GUIDE_BINS;
-        for (int b = 0; b < FEN_GUIDE_BINS; ++b)
-            d[b] = static_cast<float>(FEN_GUIDE_BINS * t.probability(b));
-        std::uint32_t* col = tablesHost_.data() + entries + s * 4 * FEN_GUIDE_BINS;
-        for (int j = 0; j < FEN_GUIDE_BINS; ++j) {
-            const std::uint32_t alias = t.alias[2 * j + 1];
-            col[4 * j] = t.alias[2 * j];
-            col[4 * j + 1] = alias;
-            col[4 * j + 2] = bits(d[j]);
-            col[4 * j + 3] = bits(d[alias]);
+        t.learned = true;
+        t.aliasShift = cdf.aliasShift;
+        t.alias = cdf.alias;
+        for (std::size_t b = 0; b < w.size(); ++b)
+            t.leaves[b].density = static_cast<float>(cdf.probability(b) / t.leaves[b].area());
+    }
+
+    tablesHost_.assign(opt_.enabled ? deviceParams_.columns_at : 4, 0u);
+    std::uint32_t nodeAt = 0, leafAt = 0, columnAt = 0;
+    for (std::size_t s = 0; s < trees_.size(); ++s) {
+        const Tree& t = trees_[s];
+        std::uint32_t* rec = tablesHost_.data() + 4 * s;
+        rec[0] = nodeAt;
+        rec[1] = leafAt;
+        rec[2] = columnAt;
+        rec[3] = (t.learned ? FEN_GUIDE_LEARNED | t.aliasShift : 0u) |
+                 (isInitial(t) ? FEN_GUIDE_INITIAL : 0u);
+        for (const auto& n : t.nodes) {
+            std::uint32_t* out = tablesHost_.data() + deviceParams_.nodes_at + 4 * std::size_t{nodeAt++};
+            for (int q = 0; q < 4; ++q)
+                out[q] = n[q] >= 0 ? rec[0] + static_cast<std::uint32_t>(n[q])
+                                   : FEN_GUIDE_LEAF | (rec[1] + static_cast<std::uint32_t>(~n[q]));
+        }
+        for (const Leaf& l : t.leaves) {
+            std::uint32_t* out = tablesHost_.data() + deviceParams_.leaves_at + 2 * std::size_t{leafAt++};
+            out[0] = floatBits(l.density);
+            out[1] = l.x0 | (l.y0 << 14) | (l.depth << 28);
+        }
+        if (t.learned) {
+            const std::size_t at = deviceParams_.columns_at + 2 * std::size_t{columnAt};
+            if (at + t.alias.size() > tablesHost_.size())
+                tablesHost_.resize(at + t.alias.size());
+            std::copy(t.alias.begin(), t.alias.end(), tablesHost_.begin() + static_cast<std::ptrdiff_t>(at));
+            columnAt += static_cast<std::uint32_t>(t.alias.size() / 2);
         }
     }
+    if (nodeAt > nodeCapacity_ || leafAt > leafCapacity_ || columnAt > columnCapacity_)
+        throw Error("guide tables: beyond the capacity they were sized for");  // refine() keeps within
 }
 
 void FirstBounceGuide::upload()
@@ -128,55 +315,138 @@ void FirstBounceGuide::learn()
 {
     if (!opt_.enabled)
         return;
-    std::vector<std::uint64_t> raw(sumSq_.size() * FEN_GUIDE_STATS_WORDS);
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<std::uint64_t> raw(leafCount_ * FEN_GUIDE_STATS_WORDS);
     ctx_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
     const double scale = std::ldexp(1.0, -2 * kStatsFixedPointBits);
-    for (std::size_t i = 0; i < sumSq_.size(); ++i) {
-        const std::uint64_t* w = raw.data() + FEN_GUIDE_STATS_WORDS * i;
-        // v^2 d(b), d the density the pass drew the box with: an estimate of the box's S(b).
-        sumSq_[i] += fixed128(w + FEN_GUIDE_SUMSQ_LO) * scale * densityHost_[i];
-        connections_[i] += static_cast<double>(w[FEN_GUIDE_CONNECTIONS]);
+    const std::uint64_t* w = raw.data();
+    std::vector<std::vector<Leaf>> pass(trees_.size());
+    for (std::size_t s = 0; s < trees_.size(); ++s) {
+        pass[s].resize(trees_[s].leaves.size());
+        for (std::size_t i = 0; i < pass[s].size(); ++i, w += FEN_GUIDE_STATS_WORDS) {
+            Leaf& l = trees_[s].leaves[i];
+            // v^2 d(b), d the density the pass drew the leaf with: an estimate of the leaf's S(b).
+            pass[s][i].sumSq = fixed128(w + FEN_GUIDE_SUMSQ_LO) * scale * l.density;
+            pass[s][i].connections = static_cast<double>(w[FEN_GUIDE_CONNECTIONS]);
+            l.sumSq += pass[s][i].sumSq;
+            l.connections += pass[s][i].connections;
+        }
     }
+    lastSplits_ = refine(pass);
     rebuild();
     upload();
     clearStats();
+    learnSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::vector<double> FirstBounceGuide::probabilities(std::uint32_t slot) const
+std::vector<FirstBounceGuide::LeafView> FirstBounceGuide::leaves(std::uint32_t slot) const
 {
-    std::vector<double> p(FEN_GUIDE_BINS);
-    for (int b = 0; b < FEN_GUIDE_BINS; ++b)
-        p[b] = densityHost_.at(std::size_t{slot} * FEN_GUIDE_BINS + b) / FEN_GUIDE_BINS;
-    return p;
+    const Tree& t = trees_.at(slot);
+    const std::uint32_t first = tablesHost_.at(4 * std::size_t{slot} + 1);
+    const double unit = std::ldexp(1.0, -FEN_GUIDE_MAX_DEPTH);
+    std::vector<LeafView> v;
+    for (std::size_t b = 0; b < t.leaves.size(); ++b) {
+        const Leaf& l = t.leaves[b];
+        v.push_back({l.x0 * unit, l.y0 * unit, std::ldexp(1.0, -static_cast<int>(l.depth)),
+                     l.density * l.area(), first + static_cast<std::uint32_t>(b)});
+    }
+    return v;
 }
 
-// Only the boxes that saw light: (index, sum, contributions) triples.
+// Slots whose tree was refined or has seen light: their shapes (depth first, per child: 1 a node,
+// 0 a leaf; the root is always a node) and their leaves' (sum, contributions).
 void FirstBounceGuide::save(StateWriter& w) const
 {
-    std::vector<double> seen;
-    for (std::size_t i = 0; i < sumSq_.size(); ++i)
-        if (connections_[i] > 0.0 || sumSq_[i] > 0.0) {
-            seen.push_back(static_cast<double>(i));
-            seen.push_back(sumSq_[i]);
-            seen.push_back(connections_[i]);
+    std::vector<std::uint64_t> slots, shape;
+    std::vector<double> leaves;
+    for (std::size_t s = 0; s < trees_.size(); ++s) {
+        const Tree& t = trees_[s];
+        const bool seen = std::any_of(t.leaves.begin(), t.leaves.end(),
+                                      [](const Leaf& l) { return l.sumSq > 0.0 || l.connections > 0.0; });
+        if (!seen && isInitial(t))
+            continue;
+        slots.push_back(s);
+        std::function<void(std::int32_t)> walk = [&](std::int32_t n) {
+            for (int q = 0; q < 4; ++q) {
+                const std::int32_t c = t.nodes[static_cast<std::size_t>(n)][q];
+                shape.push_back(c >= 0 ? 1u : 0u);
+                if (c >= 0)
+                    walk(c);
+            }
+        };
+        walk(0);
+        for (const Leaf& l : t.leaves) {
+            leaves.push_back(l.sumSq);
+            leaves.push_back(l.connections);
         }
-    w.f64s("guide.boxes", seen);
+    }
+    w.u64s("guide.slots", slots);
+    w.u64s("guide.shape", shape);
+    w.f64s("guide.leaves", leaves);
+    w.u64s("guide.splits", {lastSplits_, deferredSplits_});
 }
 
 void FirstBounceGuide::load(StateReader& r)
 {
-    const std::vector<double> seen = r.f64s("guide.boxes", 3 * sumSq_.size());
-    if (seen.size() % 3 != 0)
-        r.fail("guide.boxes", "not (index, sum, count) triples");
-    std::fill(sumSq_.begin(), sumSq_.end(), 0.0);
-    std::fill(connections_.begin(), connections_.end(), 0.0);
-    for (std::size_t k = 0; k < seen.size(); k += 3) {
-        const double i = seen[k];
-        if (!(i >= 0.0 && i < static_cast<double>(sumSq_.size())) || !(seen[k + 1] >= 0.0) || !(seen[k + 2] >= 0.0))
-            r.fail("guide.boxes", "a box out of range or a negative sum");
-        sumSq_[static_cast<std::size_t>(i)] = seen[k + 1];
-        connections_[static_cast<std::size_t>(i)] = seen[k + 2];
+    const std::vector<std::uint64_t> slots = r.u64s("guide.slots", trees_.size());
+    const std::vector<std::uint64_t> shape = r.u64s("guide.shape", 4 * nodeCapacity_);
+    const std::vector<double> leaves = r.f64s("guide.leaves", 2 * leafCapacity_);
+    const std::vector<std::uint64_t> splits = r.u64s("guide.splits", 2);
+    if (splits.size() != 2)
+        r.fail("guide.splits", "not (last, deferred)");
+    std::vector<Tree> trees(trees_.size(), initialTree());
+    std::size_t at = 0, leafAt = 0, total = 0;
+    for (std::size_t k = 0; k < slots.size(); ++k) {
+        if (slots[k] >= trees.size() || (k > 0 && slots[k] <= slots[k - 1]))
+            r.fail("guide.slots", "a slot out of range or out of order");
+        Tree t;
+        std::function<void(std::uint32_t, std::uint32_t, std::uint32_t)> parse = [&](std::uint32_t x0,
+                                                                                     std::uint32_t y0,
+                                                                                     std::uint32_t depth) {
+            const auto n = t.nodes.size();
+            t.nodes.push_back({});
+            const std::uint32_t half = 1u << (FEN_GUIDE_MAX_DEPTH - depth - 1);
+            for (std::uint32_t q = 0; q < 4; ++q) {
+                if (at >= shape.size() || shape[at] > 1)
+                    r.fail("guide.shape", "ends early or holds a value other than 0 and 1");
+                const std::uint32_t cx = x0 + (q & 1u) * half, cy = y0 + (q >> 1) * half;
+                if (shape[at++] == 1) {
+                    if (depth + 1 >= FEN_GUIDE_MAX_DEPTH)
+                        r.fail("guide.shape", "a tree deeper than the guide allows");
+                    t.nodes[n][q] = static_cast<std::int32_t>(t.nodes.size());
+                    parse(cx, cy, depth + 1);
+                } else {
+                    if (leafAt + 2 > leaves.size())
+                        r.fail("guide.leaves", "fewer leaves than the trees' shapes hold");
+                    Leaf l;
+                    l.x0 = cx;
+                    l.y0 = cy;
+                    l.depth = depth + 1;
+                    l.sumSq = r.finite("guide.leaves", leaves[leafAt]);
+                    l.connections = r.finite("guide.leaves", leaves[leafAt + 1]);
+                    if (l.sumSq < 0.0 || l.connections < 0.0)
+                        r.fail("guide.leaves", "a negative sum or count");
+                    leafAt += 2;
+                    t.nodes[n][q] = ~static_cast<std::int32_t>(t.leaves.size());
+                    t.leaves.push_back(l);
+                }
+            }
+        };
+        parse(0, 0, 0);
+        trees[slots[k]] = std::move(t);
     }
+    if (at != shape.size() || leafAt != leaves.size())
+        r.fail("guide.shape", "values left over after the listed slots' trees");
+    for (const Tree& t : trees)
+        total += t.leaves.size();
+    std::size_t nodes = 0;
+    for (const Tree& t : trees)
+        nodes += t.nodes.size();
+    if (total > leafCapacity_ || nodes > nodeCapacity_)
+        r.fail("guide.shape", "more leaves than --adaptive-guide-memory holds");
+    trees_ = std::move(trees);
+    lastSplits_ = splits[0];
+    deferredSplits_ = splits[1];
     rebuild();
     upload();
     clearStats();
@@ -186,16 +456,40 @@ nlohmann::json FirstBounceGuide::report() const
 {
     if (!opt_.enabled)
         return {{"enabled", false}};
+    // The checksum covers every tree's shape and totals: equal checksums, equal guides (the
+    // determinism tests compare them).
+    double connections = 0.0;
+    Fnv checksum;
+    for (const Tree& t : trees_) {
+        for (const Leaf& l : t.leaves) {
+            connections += l.connections;
+            checksum.value(l.sumSq);
+            checksum.value(l.connections);
+            checksum.value(l.depth);
+        }
+        checksum.value(t.learned);
+    }
+    const double used = trees_.size() * 16.0 + leafCount_ * kBytesPerLeaf;
     return {{"enabled", true},
             {"slots", opt_.slots},
             {"voxel_m", 1.0 / deviceParams_.lattice.w},
             {"share", opt_.share},
             {"min_connections", opt_.minConnections},
             {"min_gain", opt_.minGain},
+            {"max_depth", opt_.maxDepth},
+            {"split_share", opt_.splitShare},
             {"candidate_slots", candidateSlots_},
             {"learned_slots", learnedSlots_},
-            {"connections", std::accumulate(connections_.begin(), connections_.end(), 0.0)},
-            {"memory_bytes", deviceBytes_}};
+            {"leaves", leafCount_},
+            {"leaf_capacity", leafCapacity_},
+            {"max_leaf_depth", maxDepthSeen_},
+            {"splits_last_pass", lastSplits_},
+            {"splits_deferred", deferredSplits_},
+            {"connections", connections},
+            {"checksum", checksum.h},
+            {"learn_seconds", learnSeconds_},
+            {"memory_bytes", deviceBytes_},
+            {"memory_used_bytes", static_cast<std::uint64_t>(used)}};
 }
 
 }  // namespace fen

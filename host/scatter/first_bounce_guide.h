@@ -6,25 +6,38 @@
 // Light that must bounce off something outside before it can enter (the ground in front of a
 // window, a sunlit wall across a courtyard) is what emission alone cannot steer: the emitted ray
 // only decides where the bounce happens, the bounce decides whether the light gets in. The guide
-// learns, per slot (a voxel of the scene and the side a surface faces), which of 64 boxes of the
-// cosine-hemisphere's square sends a unit of weight to the camera, and the device draws the first
-// bounce from that: d(b) = 64 ((1 - share) m(b) / sum m + share / 64), m(b) = sqrt(S(b)) and S(b)
-// the box's learned integral of the squared delivery -- the density that minimises the second
-// moment sum S(b) / d(b) of what a unit of weight delivers (for a delivery that is the same for
-// every path through a box, the first moment: the zero-variance density). `share` > 0 keeps every
-// box drawable: the weights stay finite and the image unbiased. A slot is guided only when its
+// learns, per slot (a voxel of the scene and the side a surface faces), which leaves of a quadtree
+// over the cosine-hemisphere's square send a unit of weight to the camera, and the device draws
+// the first bounce from that: leaf b has probability P(b) = (1 - share) m(b) / sum m + share A(b),
+// density d(b) = P(b) / A(b), with A(b) its area, m(b) = sqrt(S(b) A(b)) and S(b) the leaf's
+// learned integral of the squared delivery -- the piecewise-constant density that minimises the
+// second moment sum S(b) / d(b) of what a unit of weight delivers (for a delivery that is the same
+// for every path through a leaf, the first moment: the zero-variance density). It is the one-sample
+// mixture of the cosine, which draws leaf b with probability A(b), and the learned density, with
+// weight `share` on the cosine: share > 0 keeps every leaf drawable, the weights finite and the
+// image unbiased.
+// The trees start at 8 x 8 leaves and are refined on every pass, one level at a time: a leaf that
+// held more than splitShare of its slot's m in the pass just run, with at least
+// minLeafConnections contributions in it, becomes four, each inheriting a quarter of its totals, down to
+// FEN_GUIDE_MAX_DEPTH -- so the resolution follows the learned density, as in practical path
+// guiding's directional quadtrees, and a window of a few thousandths of a steradian seen from far
+// away gets leaves of its own. The leaves of all slots together are capped by the memory the
+// buffers are sized for at construction (memoryMiB), which holds at any image size; when the cap is
+// reached, the splits with the largest shares are made first and the rest wait (reported). A slot is guided only when its
 // statistics predict that the table cuts that second moment at least minGain times against the
 // cosine's (sum S / sum S/d): where light leaves a surface towards the camera about as much in
 // every direction (a sunlit floor in view), guiding buys nothing and its noisy tables cost.
 // Learning runs on the owner's passes (the adaptive strategy's): learn() reads the pass's
 // statistics, adds them to the totals (each sample's square times the density it was drawn with,
-// so passes drawn from different tables add up), rebuilds every slot with at least
-// minConnections contributions, uploads the tables and clears the statistics. Deterministic: the statistics are
+// so passes drawn from different tables add up), refines the trees, rebuilds every slot with at
+// least minConnections contributions, uploads the tables and clears the statistics. Deterministic: the statistics are
 // integer sums, so the tables after a pass depend only on the seed and the path counts.
-// Off (enabled = false): GuideParams.slots = 0 and one-element placeholder buffers; the kernels
-// then scatter exactly as without a guide.
+// Off (enabled = false): GuideParams.slots = 0 and small placeholder buffers; the kernels then
+// scatter exactly as without a guide.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -52,6 +65,10 @@ struct GuideOptions {
     // R/32 on all six measured scenes: docs/results/guide.md).
     int voxelsAcross = 4;
     std::uint32_t slots = 1u << 13;   // hash slots (a power of 2)
+    int maxDepth = FEN_GUIDE_MAX_DEPTH;  // leaves down to 2^-maxDepth of the square's side (3: 8 x 8)
+    double splitShare = 0.02;         // a leaf holding more of its slot's m than this is split ...
+    double minLeafConnections = 8.0;  // ... once it has seen this many contributions
+    double memoryMiB = 256.0;         // device memory for the trees and their statistics
 };
 // Throws a one-line error naming the option for a value out of range.
 void validateGuideOptions(const GuideOptions& o);
@@ -66,28 +83,56 @@ public:
     const cl::Buffer& stats() const { return stats_; }
     std::size_t deviceBytes() const { return deviceBytes_; }
 
-    // After a pass: statistics into the totals, new tables up, statistics cleared.
+    // After a pass: statistics into the totals, trees refined, new tables up, statistics cleared.
     void learn();
     // Clears the device statistics (a resumed render starts between passes).
     void clearStats();
-    // The table a slot draws from: the realised probability of each box (for tests).
-    std::vector<double> probabilities(std::uint32_t slot) const;
+
+    // For tests and reports: a slot's leaves, in the order of their global indices.
+    struct LeafView {
+        double x0, y0, size;   // the leaf's square in the unit square
+        double probability;    // the realised probability the device draws it with (guided slots)
+        std::uint32_t index;   // its global index: the key of its statistics
+    };
+    std::vector<LeafView> leaves(std::uint32_t slot) const;
+    bool learned(std::uint32_t slot) const { return trees_.at(slot).learned; }
     std::uint32_t learnedSlots() const { return learnedSlots_; }
+    std::size_t leafCount() const { return leafCount_; }
+    std::size_t leafCapacity() const { return leafCapacity_; }
 
     void save(StateWriter& w) const;
     void load(StateReader& r);
     nlohmann::json report() const;
 
 private:
+    // A slot's tree: nodes with four children each (>= 0: a node, < 0: leaf ~c), node 0 the root.
+    struct Leaf {
+        double sumSq = 0.0, connections = 0.0;  // S(b) and contributions, over all passes
+        float density = 1.0f;                   // d(b) the last tables drew it with (1: the cosine)
+        std::uint32_t x0 = 0, y0 = 0, depth = 0;  // corner in 2^-FEN_GUIDE_MAX_DEPTH units
+        double area() const { return std::ldexp(1.0, -2 * static_cast<int>(depth)); }
+    };
+    struct Tree {
+        std::vector<std::array<std::int32_t, 4>> nodes;
+        std::vector<Leaf> leaves;
+        std::vector<std::uint32_t> alias;  // the learned table's columns (threshold, alias)
+        std::uint32_t aliasShift = 31;
+        bool learned = false;
+    };
+    static Tree initialTree();
+    static bool isInitial(const Tree& t);  // the full tree of depth FEN_GUIDE_INITIAL_DEPTH
+    std::size_t refine(const std::vector<std::vector<Leaf>>& pass);
     void rebuild();
     void upload();
     ocl::Context& ctx_;
     GuideOptions opt_;
     dev::GuideParams deviceParams_{};
-    std::vector<double> sumSq_, connections_;       // per slot x box, over all passes: S(b), count
-    std::vector<std::uint32_t> tablesHost_;         // the learned bitmap, then the columns (fen_guide.h)
-    std::vector<float> densityHost_;                // per slot x box: d(b)
-    std::uint32_t learnedSlots_ = 0, candidateSlots_ = 0;  // guided; with enough contributions
+    std::vector<Tree> trees_;
+    std::size_t leafCapacity_ = 0, nodeCapacity_ = 0, columnCapacity_ = 0;
+    std::size_t leafCount_ = 0, deferredSplits_ = 0, lastSplits_ = 0;
+    std::vector<std::uint32_t> tablesHost_;  // slot records, nodes, leaves, columns (fen_guide.h)
+    std::uint32_t learnedSlots_ = 0, candidateSlots_ = 0, maxDepthSeen_ = 0;
+    double learnSeconds_ = 0.0;
     cl::Buffer params_, tables_, stats_;
     std::size_t deviceBytes_ = 0;
 };

@@ -1,18 +1,18 @@
 /* guide.h — the first-bounce guide on the device (DESIGN.md §3.4; layout and statistics:
  * shared/fen_guide.h; learning: host/scatter/first_bounce_guide.h).
  *
- * At its first diffuse vertex a path finds its slot (voxel and facing side, hashed), draws a box b
- * of the 8 x 8 grid over the square from the slot's alias table (density d(b) = 64 P(b) there, the
- * host's mixture of what was learned with the uniform table), a point uniformly in the box, and
- * scatters through it as the cosine hemisphere does; the weight is divided by d(b). The path then
- * carries g = stats_scale A_pix / (Y(beta) d(b)) and the slot's box in org.w and dir.w, and every
- * camera contribution C it makes afterwards adds (C g)^2 to that box's statistics: C / (Y(beta)
- * d(b)) estimates what a unit of weight sent through the box delivers, over the box's density, and
- * its square (times d(b), on the host) the box's share of the second moment the next table is
+ * At its first diffuse vertex a path finds its slot (voxel and facing side, hashed), draws a leaf b
+ * of its quadtree over the square from the slot's alias table (density d(b) = P(b) / area(b) there,
+ * the host's mixture of what was learned with the uniform table), a point uniformly in the leaf,
+ * and scatters through it as the cosine hemisphere does; the weight is divided by d(b). The path then
+ * carries g = stats_scale A_pix / (Y(beta) d(b)) and the global leaf in org.w and dir.w, and every
+ * camera contribution C it makes afterwards adds (C g)^2 to that leaf's statistics: C / (Y(beta)
+ * d(b)) estimates what a unit of weight sent through the leaf delivers, over the leaf's density, and
+ * its square (times d(b), on the host) the leaf's share of the second moment the next table is
  * fitted to. A_pix (the camera's pixel area at unit distance) only brings the numbers near 1. A slot not learned yet draws
- * nothing extra: the scatter's own point, d = 1, only the record (cheap where most vertices are).
+ * nothing extra: the scatter's own point, d = 1, and the leaf it lies in for the record.
  * Invariant: a slot's table sums to 1 with every d(b) > 0, so every direction the cosine lobe
- * reaches can still be drawn, and the weight uses the d(b) of the box drawn: unbiased.
+ * reaches can still be drawn, and the weight uses the d(b) of the leaf drawn: unbiased.
  */
 #ifndef FEN_GUIDE_LIB_H
 #define FEN_GUIDE_LIB_H
@@ -24,7 +24,7 @@
 
 typedef struct {
     global const GuideParams* params;
-    global const uint* tables;  /* the learned-slot bitmap, then the alias columns (fen_guide.h) */
+    global const uint* tables;  /* slot records, nodes, leaves, alias columns (fen_guide.h) */
 } Guide;
 
 /* The slot of a vertex at x whose light arrived on side n (unit): its voxel and the axis-aligned
@@ -43,38 +43,60 @@ static inline uint guide_slot(global const GuideParams* gp, float3 x, float3 n)
     return h & (gp->slots - 1u);
 }
 
-/* Whether slot `slot` has a learned table (else its vertices scatter as the cosine does). */
-static inline int guide_learned(const Guide* g, uint slot)
+/* The slot's record (shared/fen_guide.h): root node, first leaf, first column, learned | shift. */
+static inline uint4 guide_record_of(const Guide* g, uint slot)
 {
-    return (g->tables[slot >> 5] >> (slot & 31u)) & 1u;
+    return vload4(slot, g->tables);
 }
 
-/* The box of the square a point lies in. */
-static inline uint guide_box(float2 sq)
+/* The global leaf of the slot's tree (record r) that point sq of the square lies in: a descent
+   from the root, each level halving the square (exact in floating point). */
+static inline uint guide_leaf(const Guide* g, uint4 r, float2 sq)
 {
-    const uint i = min((uint)(sq.x * FEN_GUIDE_SIDE), (uint)(FEN_GUIDE_SIDE - 1));
-    const uint j = min((uint)(sq.y * FEN_GUIDE_SIDE), (uint)(FEN_GUIDE_SIDE - 1));
-    return j * FEN_GUIDE_SIDE + i;
+    if (r.w & FEN_GUIDE_INITIAL) {
+        /* the initial full tree: its leaves in depth-first order are the Morton order of the
+           8 x 8 boxes, quadrant bit 0 from x, bit 1 from y at every level */
+        const uint i = min((uint)(sq.x * 8.0f), 7u), j = min((uint)(sq.y * 8.0f), 7u);
+        const uint morton = (i & 1u) | ((j & 1u) << 1) | ((i & 2u) << 1) | ((j & 2u) << 2) | ((i & 4u) << 2) |
+                            ((j & 4u) << 3);
+        return r.y + morton;
+    }
+    uint node = r.x;
+    for (int level = 0; level < FEN_GUIDE_MAX_DEPTH; ++level) {
+        const int right = sq.x >= 0.5f, up = sq.y >= 0.5f;
+        const uint child = g->tables[g->params->nodes_at + 4u * node + (uint)right + 2u * (uint)up];
+        if (child & FEN_GUIDE_LEAF)
+            return child & ~FEN_GUIDE_LEAF;
+        node = child;
+        sq = sq * 2.0f - (float2)((float)right, (float)up);
+    }
+    return r.y; /* unreachable for the host's trees: no deeper than FEN_GUIDE_MAX_DEPTH */
 }
 
-/* Draws the point of the unit square for learned slot `slot` from 96 random bits: *key = the
-   slot's box, *d = its density. The point stays below 1 (a box's far edge belongs to the next). */
-static inline float2 guide_sample(const Guide* g, uint slot, RngBlock bits, uint* key, float* d)
+/* Draws the point of the unit square for learned slot record r from 96 random bits: *key = the
+   global leaf drawn, *d = its density. The point stays inside the leaf (its far edge belongs to
+   the next). */
+static inline float2 guide_sample(const Guide* g, uint4 r, RngBlock bits, uint* key, float* d)
 {
-    const uint shift = g->params->alias_shift;
+    const uint shift = r.w & 31u;
     const uint j = bits.x >> shift;
-    const uint4 e = vload4(g->params->entries + slot * FEN_GUIDE_BINS + j, g->tables);
-    const int keep = (bits.x & ((1u << shift) - 1u)) < e.x;
-    const uint b = keep ? j : e.y;
-    *key = slot * FEN_GUIDE_BINS + b;
-    *d = as_float(keep ? e.z : e.w);
-    const float2 in_box = (float2)(fen_u32_to_unit(bits.y), fen_u32_to_unit(bits.z));
-    const float2 corner = (float2)((float)(b % FEN_GUIDE_SIDE), (float)(b / FEN_GUIDE_SIDE));
-    return fmin((corner + in_box) * (1.0f / FEN_GUIDE_SIDE), (float2)(0x1.fffffep-1f));
+    const uint2 col = vload2(r.z + j, g->tables + g->params->columns_at);
+    const uint leaf = r.y + ((bits.x & ((1u << shift) - 1u)) < col.x ? j : col.y);
+    const uint2 e = vload2(leaf, g->tables + g->params->leaves_at);
+    *key = leaf;
+    *d = as_float(e.x);
+    const float size = as_float((127u - (e.y >> 28)) << 23); /* 2^-depth, exactly */
+    const float2 corner = (float2)((float)(e.y & 0x3fffu), (float)((e.y >> 14) & 0x3fffu)) *
+                          (1.0f / (float)(1 << FEN_GUIDE_MAX_DEPTH));
+    const float2 in_leaf = (float2)(fen_u32_to_unit(bits.y), fen_u32_to_unit(bits.z));
+    /* corner + size is exact (multiples of 2^-12 up to 1, positive); rounding may reach it, so the
+       point is kept one float below it: inside the leaf, below 1 */
+    const float2 end = corner + size;
+    return fmin(corner + in_leaf * size, (float2)(as_float(as_uint(end.x) - 1u), as_float(as_uint(end.y) - 1u)));
 }
 
 /* Adds a camera contribution of luminance y, made after the path left a guided vertex (its record
-   g, key), to that box's statistics: (y g)^2, g already holding the fixed-point scale. */
+   g, key), to that leaf's statistics: (y g)^2, g already holding the fixed-point scale. */
 static inline void guide_record(volatile global ulong* guide_stats, float g, uint key, float y,
                                 volatile global ulong* counters)
 {

@@ -19,8 +19,8 @@
  *    large weight, which adaptive emission draws from cells it keeps near the base density --
  *    light that must bounce outside before it can enter (docs/results/house.md);
  *  - the first-bounce guide (guide->params->slots > 0; lib/guide.h): at its first diffuse vertex,
- *    and for every branch of a split there, a path scatters through a box drawn from its slot's
- *    learned table, its weight divided by the box's density; its later camera connections carry
+ *    and for every branch of a split there, a path scatters through a leaf drawn from its slot's
+ *    learned quadtree, its weight divided by the box's density; its later camera connections carry
  *    the record that feeds the table;
  *  - a path reaching params->max_depth interactions dies (counted, with its flux: a bias that is
  *    reported; the default cap is high enough that only endless paths meet it).
@@ -60,7 +60,7 @@ static inline int scatter_diffuse(global const RenderParams* params, PathState* 
     return 0;
 }
 
-/* The diffuse scatter at a path's first diffuse vertex (slot: its guide slot): through a box of the
+/* The diffuse scatter at a path's first diffuse vertex (slot: its guide slot): through a leaf of the
    guide's table when there is a guide, the weight over its density, and the record for what the
    path delivers from here on (lib/guide.h); else scatter_diffuse(). */
 static inline int scatter_first(global const RenderParams* params, const Guide* guide,
@@ -72,11 +72,12 @@ static inline int scatter_first(global const RenderParams* params, const Guide* 
     uint key;
     float d = 1.0f;
     float2 sq = u.yz;
-    if (guide_learned(guide, slot)) {
+    const uint4 r = guide_record_of(guide, slot);
+    if (r.w & FEN_GUIDE_LEARNED) {
         const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_GUIDE);
-        sq = guide_sample(guide, slot, bits, &key, &d);
+        sq = guide_sample(guide, r, bits, &key, &d);
     } else {
-        key = slot * FEN_GUIDE_BINS + guide_box(sq);
+        key = guide_leaf(guide, r, sq);
     }
     const int alive = scatter_diffuse(params, p, albedo, n, (float4)(u.x, sq.x, sq.y, u.w), next);
     p->beta.xyz /= d;

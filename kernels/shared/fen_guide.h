@@ -5,21 +5,25 @@
  *
  * One declaration for host and device (fen_types.h). The directions at a vertex are drawn as the
  * cosine-weighted hemisphere is, from a point (u1, u2) of the unit square (lib/sampling.h
- * sample_cosine_hemisphere); the guide makes that point's density piecewise constant over an 8 x 8
- * grid of boxes instead of uniform. Since the map from the square to the hemisphere carries the
- * uniform density to cos(theta)/pi, a box's density d(b) = 64 P(b) in the square is d(b) cos/pi per
- * steradian, and the path's weight is divided by d(b): unbiased wherever d > 0, which the host
- * keeps by mixing every learned table with the uniform one (lib/guide.h).
- * Vertices share a table per slot: the voxel of the vertex (a lattice over the scene) and the side
+ * sample_cosine_hemisphere); the guide makes that point's density piecewise constant over the
+ * leaves of a quadtree over the square instead of uniform. Since the map from the square to the
+ * hemisphere carries the uniform density to cos(theta)/pi, a leaf's density d in the square is
+ * d cos/pi per steradian, and the path's weight is divided by d: unbiased wherever d > 0, which the
+ * host keeps by mixing every learned table with the uniform one -- the one-sample mixture of the
+ * cosine (the BSDF's own sampling) and the learned density (host/scatter/first_bounce_guide.h).
+ * The quadtree's resolution follows the learned density: a leaf holding much of it is split on the
+ * next pass, down to FEN_GUIDE_MAX_DEPTH (cells of 2^-12 of the square's side), so that a window a
+ * few thousandths of a steradian wide, seen from far outside, gets leaves of its own.
+ * Vertices share a tree per slot: the voxel of the vertex (a lattice over the scene) and the side
  * its normal faces most (6), hashed into GuideParams.slots slots. A collision mixes two places'
- * tables: it costs precision, never correctness.
- * Statistics per slot and box, FEN_GUIDE_STATS_WORDS fen_u64 each: the sum, 128-bit fixed point
- * at GuideParams.stats_scale^2, of v^2 for every camera contribution a path made after leaving the
- * vertex through the box, v = the contribution over (the path's weight just after the vertex times
- * d(b)) -- v estimates what a unit of weight sent through the box delivers, per unit of the square
- * -- and how many such contributions there were. Times d(b) on the host, the sum of v^2 estimates
- * the box's integral of the squared delivery, which is what the variance under any other table
- * follows (host/scatter/first_bounce_guide.h).
+ * trees: it costs precision, never correctness.
+ * Statistics per leaf (the global leaf index is the key), FEN_GUIDE_STATS_WORDS fen_u64 each: the
+ * sum, 128-bit fixed point at GuideParams.stats_scale^2, of v^2 for every camera contribution a
+ * path made after leaving the vertex through the leaf, v = the contribution over (the path's weight
+ * just after the vertex times d) -- v estimates what a unit of weight sent through the leaf
+ * delivers, per unit of the square -- and how many such contributions there were. Times d on the
+ * host, the sum of v^2 estimates the leaf's integral of the squared delivery, which is what the
+ * variance under any other table follows.
  * Invariants: struct size a multiple of 16 bytes; listed in fen_layout.h for the layout probe.
  */
 #ifndef FEN_GUIDE_H
@@ -27,30 +31,45 @@
 
 #include "shared/fen_types.h"
 
-#define FEN_GUIDE_SIDE 8         /* boxes per side of the unit square */
-#define FEN_GUIDE_BINS 64        /* FEN_GUIDE_SIDE^2 boxes per slot; the alias table's columns */
+#define FEN_GUIDE_INITIAL_DEPTH 3  /* every slot's tree starts as 8 x 8 leaves */
+#define FEN_GUIDE_MAX_DEPTH 12     /* leaves down to 2^-12 of the square's side */
 #define FEN_GUIDE_SUMSQ_LO 0
 #define FEN_GUIDE_SUMSQ_HI 1
 #define FEN_GUIDE_CONNECTIONS 2
 #define FEN_GUIDE_STATS_WORDS 3
 
-/* The tables buffer (fen_u32 words): first a bitmap of the learned slots (bit s % 32 of word
-   s / 32; an unlearned slot scatters as the cosine does, from the scatter's own random numbers,
-   d = 1, no table read), then from uint4 GuideParams.entries on, per slot FEN_GUIDE_BINS alias
-   columns of four words: (threshold, alias box, as_uint d(column's box), as_uint d(alias box)),
-   so one 16-byte read gives the box and its density. */
+/* A child word of a node: FEN_GUIDE_LEAF | global leaf index, or the global index of a node. */
+#define FEN_GUIDE_LEAF 0x80000000u
+/* A slot record's w: FEN_GUIDE_LEARNED | the alias shift of its columns, or 0 (the cosine); and
+   FEN_GUIDE_INITIAL while the slot's tree is the initial full one, whose leaf for a point the device
+   computes without reading the nodes (most slots, never refined: a first vertex there costs no
+   more than a fixed grid's). */
+#define FEN_GUIDE_LEARNED 0x80000000u
+#define FEN_GUIDE_INITIAL 0x40000000u
+
+/* The tables buffer (fen_u32 words), four sections from the word offsets in GuideParams:
+ *  - slot records, uint4 per slot: (root node, first leaf, first alias column, w above);
+ *  - nodes, uint4 per node: its four children, quadrant q = (u1 >= 1/2) + 2 (u2 >= 1/2);
+ *  - leaves, uint2 per leaf: (as_uint d, the leaf's place: x0 | y0 << 14 | depth << 28, x0 and y0
+ *    its corner in units of 2^-FEN_GUIDE_MAX_DEPTH);
+ *  - alias columns of a learned slot, uint2 each: (threshold, alias leaf, counted from the slot's
+ *    first leaf); column j gives leaf j to the values below the threshold, its alias to the rest
+ *    (host/util/integer_cdf.h). */
 
 FEN_NS_BEGIN
 
 typedef struct {
-    fen_float4 lattice;  /* xyz: a corner of the voxel lattice (m); w: voxels per metre */
-    fen_u32 slots;       /* hash slots (a power of 2); 0: no guide (every vertex scatters as cosine) */
-    fen_u32 alias_shift; /* each slot's alias table has 2^(32 - shift) = FEN_GUIDE_BINS columns */
-    fen_f32 stats_scale; /* fixed-point units per unit of the statistic */
-    fen_u32 entries;     /* where the boxes start in the tables buffer, in uint4s (see below) */
+    fen_float4 lattice;   /* xyz: a corner of the voxel lattice (m); w: voxels per metre */
+    fen_u32 slots;        /* hash slots (a power of 2); 0: no guide (every vertex scatters as cosine) */
+    fen_u32 nodes_at;     /* word offsets of the sections of the tables buffer (above) */
+    fen_u32 leaves_at;
+    fen_u32 columns_at;
+    fen_f32 stats_scale;  /* fixed-point units per unit of the statistic */
+    fen_u32 reserved0, reserved1, reserved2;
 } GuideParams;
-FEN_ASSERT_SIZE(GuideParams, 32);
+FEN_ASSERT_SIZE(GuideParams, 48);
 FEN_ASSERT_OFFSET(GuideParams, slots, 16);
+FEN_ASSERT_OFFSET(GuideParams, stats_scale, 32);
 
 FEN_NS_END
 

@@ -1,16 +1,20 @@
 // guide_sampling_test.cpp — the first-bounce guide (DESIGN.md §3.4) against the density it claims:
 // from statistics the test writes, learn() builds each slot's table as the documented mixture
-// (1 - share) sqrt(S(b)) / sum sqrt(S) + share / 64 -- exactly, up to the integer table's 2^-32
+// (1 - share) sqrt(S(b) A(b)) / sum + share A(b) -- exactly, up to the integer table's 2^-32
 // units -- and leaves uniform a slot with too few contributions and one whose table would not cut
-// the second moment minGain times; the device then draws boxes with exactly the
-// realised probabilities (chi-square, p > 1e-3, fixed seed), each point inside its box, with the
-// density d(b) = 64 P(b) that the path's weight is divided by. Unbiasedness of the whole render
+// the second moment minGain times; it refines a slot's quadtree one level per pass where the
+// density concentrates, within the memory cap, largest shares first; the device then draws leaves
+// with exactly the realised probabilities (chi-square, p > 1e-3, fixed seed), each point inside
+// its leaf, with the density d(b) = P(b) / A(b) that the path's weight is divided by, and its
+// descent finds the host's leaf for any point; the checkpoint carries the trees. Unbiasedness of the whole render
 // with the guide on: Analytic.GuidedFirstBounceConservesEnergy.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "cl/launch.h"
+#include "io/state_io.h"
 #include "scatter/first_bounce_guide.h"
 #include "support/cl_fixture.h"
 #include "support/statistics.h"
@@ -30,31 +34,103 @@ GuideOptions options()
     return o;
 }
 
-// Writes statistics for one slot, drawn so far with the cosine (d = 1): S(b) = r(b)^2, r in units of
-// the device's v (scaled by 2^20, squared: 2^40), and a count per box.
+// Writes the statistics a pass would leave for one slot's leaves whose integrals of the squared
+// delivery are S(b) = r(b)^2: the sum of v^2 over the leaf's samples estimates S(b) / d(b), d the
+// density the slot's table draws the leaf with (1 where it is the cosine's); r in units of the
+// device's v (scaled by 2^20, squared: 2^40); and a count per leaf.
 void writeSlot(ocl::Context& ctx, const FirstBounceGuide& g, std::uint32_t slot, const std::vector<double>& r,
-               std::uint64_t countPerBox)
+               std::uint64_t countPerLeaf)
 {
-    std::vector<std::uint64_t> words(FEN_GUIDE_BINS * FEN_GUIDE_STATS_WORDS, 0);
-    for (int b = 0; b < FEN_GUIDE_BINS; ++b) {
-        words[FEN_GUIDE_STATS_WORDS * b + FEN_GUIDE_SUMSQ_LO] = static_cast<std::uint64_t>(std::ldexp(r[b] * r[b], 40));
-        words[FEN_GUIDE_STATS_WORDS * b + FEN_GUIDE_CONNECTIONS] = countPerBox;
+    const auto leaves = g.leaves(slot);
+    ASSERT_EQ(leaves.size(), r.size());
+    std::vector<std::uint64_t> words(leaves.size() * FEN_GUIDE_STATS_WORDS, 0);
+    for (std::size_t b = 0; b < leaves.size(); ++b) {
+        const double d = leaves[b].probability / (leaves[b].size * leaves[b].size);
+        words[FEN_GUIDE_STATS_WORDS * b + FEN_GUIDE_SUMSQ_LO] = static_cast<std::uint64_t>(std::ldexp(r[b] * r[b] / d, 40));
+        words[FEN_GUIDE_STATS_WORDS * b + FEN_GUIDE_CONNECTIONS] = countPerLeaf;
     }
-    ctx.queue().enqueueWriteBuffer(g.stats(), CL_TRUE, std::size_t{slot} * words.size() * 8, words.size() * 8,
-                                   words.data());
+    // A slot's leaves have consecutive global indices.
+    ctx.queue().enqueueWriteBuffer(g.stats(), CL_TRUE, std::size_t{leaves[0].index} * FEN_GUIDE_STATS_WORDS * 8,
+                                   words.size() * 8, words.data());
+}
+
+// n device draws from learned slot `slot`: (u1, u2, d, global leaf).
+std::vector<cl_float4> draw(ocl::Context& ctx, const FirstBounceGuide& g, std::uint32_t slot, std::uint32_t n)
+{
+    cl::Kernel k(ctx.program("test_guide_probes.cl"), "guide_sample_probe");
+    cl::Buffer out = ctx.buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "probe output");
+    ocl::setKernelArgs(k, g.params(), g.tables(), slot, std::uint32_t{17}, n, out);
+    ocl::launch(ctx, k, "guide_sample_probe", n);
+    std::vector<cl_float4> v(n);
+    ctx.queue().enqueueReadBuffer(out, CL_TRUE, 0, std::size_t{n} * 16, v.data());
+    return v;
+}
+
+// Draws match the realised table (chi-square), each point lies in its leaf, and the density the
+// weight is divided by is P(b) / A(b).
+void expectDrawsFollowTheTable(ocl::Context& ctx, const FirstBounceGuide& g, std::uint32_t slot)
+{
+    const auto leaves = g.leaves(slot);
+    const std::uint32_t n = 1u << 20;
+    const std::vector<cl_float4> v = draw(ctx, g, slot, n);
+    std::vector<double> observed(leaves.size(), 0.0), expected(leaves.size());
+    int outside = 0, wrongDensity = 0;
+    for (const cl_float4& s : v) {
+        std::uint32_t key;
+        std::memcpy(&key, &s.s[3], 4);
+        ASSERT_GE(key, leaves[0].index);
+        ASSERT_LT(key - leaves[0].index, leaves.size());
+        const auto& l = leaves[key - leaves[0].index];
+        observed[key - leaves[0].index] += 1.0;
+        outside += !(s.s[0] >= l.x0 && s.s[0] < l.x0 + l.size && s.s[1] >= l.y0 && s.s[1] < l.y0 + l.size);
+        wrongDensity += s.s[2] != static_cast<float>(l.probability / (l.size * l.size));
+    }
+    for (std::size_t b = 0; b < leaves.size(); ++b)
+        expected[b] = n * leaves[b].probability;
+    const double pv = test::chiSquarePValue(observed, expected);
+    std::printf("[ guide ] slot %u: %zu leaves drawn against the realised table: chi-square p = %.3g\n", slot,
+                leaves.size(), pv);
+    EXPECT_GT(pv, 1e-3);
+    EXPECT_EQ(outside, 0) << "points outside the leaf drawn";
+    EXPECT_EQ(wrongDensity, 0) << "densities other than P(b) / A(b)";
+}
+
+// The device's descent (guide_leaf) finds, for points of the square, the leaf the host's tree holds
+// them in.
+void expectDescentFindsTheLeaves(ocl::Context& ctx, const FirstBounceGuide& g, std::uint32_t slot)
+{
+    const auto leaves = g.leaves(slot);
+    std::vector<cl_float2> sq;
+    std::vector<std::uint32_t> want;
+    for (const auto& l : leaves)
+        for (double fx : {0.0, 0.37, 0.999})
+            for (double fy : {0.0, 0.61, 0.999}) {
+                sq.push_back({{static_cast<float>(l.x0 + fx * l.size), static_cast<float>(l.y0 + fy * l.size)}});
+                want.push_back(l.index);
+            }
+    const auto count = static_cast<std::uint32_t>(sq.size());
+    cl::Buffer in = ctx.buffer(CL_MEM_READ_ONLY, sq.size() * 8, "points", sq.data());
+    cl::Buffer out = ctx.buffer(CL_MEM_WRITE_ONLY, sq.size() * 4, "leaves");
+    cl::Kernel k(ctx.program("test_guide_probes.cl"), "guide_leaf_probe");
+    ocl::setKernelArgs(k, g.params(), g.tables(), slot, in, count, out);
+    ocl::launch(ctx, k, "guide_leaf_probe", count);
+    std::vector<std::uint32_t> got(sq.size());
+    ctx.queue().enqueueReadBuffer(out, CL_TRUE, 0, got.size() * 4, got.data());
+    EXPECT_EQ(got, want);
 }
 
 TEST(GuideSampling, LearnedTableIsTheDocumentedMixtureAndTheDeviceDrawsIt)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     FirstBounceGuide g(*ctx, options(), glm::dvec3(0.0), 8.0);
-    // Slot 5: two boxes carry nearly everything (the table predicts a 24x cut); slot 6: the same,
+    // Slot 5: two leaves carry nearly everything (the table predicts a 24x cut); slot 6: the same,
     // but no contributions counted yet; slot 7: a gentle ramp, a cut far below minGain = 2.
-    std::vector<double> r(FEN_GUIDE_BINS, 1.0), ramp(FEN_GUIDE_BINS);
+    // One contribution per leaf: too few for a split, so the trees keep their 8 x 8 leaves.
+    std::vector<double> r(64, 1.0), ramp(64);
     r[9] = 400.0;
     r[10] = 200.0;
     double total = 0.0;
-    for (int b = 0; b < FEN_GUIDE_BINS; ++b) {
+    for (int b = 0; b < 64; ++b) {
         total += r[b];
         ramp[b] = 1.0 + 0.02 * b;
     }
@@ -63,42 +139,112 @@ TEST(GuideSampling, LearnedTableIsTheDocumentedMixtureAndTheDeviceDrawsIt)
     writeSlot(*ctx, g, 7, ramp, 1);  // enough seen, too little to gain: stays the cosine
     g.learn();
     EXPECT_EQ(g.learnedSlots(), 1u);
-    const std::vector<double> p = g.probabilities(5);
-    for (int b = 0; b < FEN_GUIDE_BINS; ++b) {
-        EXPECT_NEAR(p[b], 0.75 * r[b] / total + 0.25 / 64.0, 1e-8) << "box " << b;
+    EXPECT_TRUE(g.learned(5));
+    const auto leaves = g.leaves(5);
+    ASSERT_EQ(leaves.size(), 64u);
+    for (int b = 0; b < 64; ++b) {
+        // Equal areas 1/64: m(b) = sqrt(S(b) / 64) is r(b) / 8, the mixture as documented.
+        EXPECT_NEAR(leaves[b].probability, 0.75 * r[b] / total + 0.25 / 64.0, 1e-8) << "leaf " << b;
         for (std::uint32_t slot : {6u, 7u})
-            EXPECT_EQ(g.probabilities(slot)[b], 1.0 / 64.0) << "slot " << slot << ", box " << b;
+            EXPECT_EQ(g.leaves(slot)[b].probability, 1.0 / 64.0) << "slot " << slot << ", leaf " << b;
     }
     // The statistics were cleared and the totals kept: another pass with nothing new changes nothing.
     g.learn();
-    EXPECT_EQ(g.probabilities(5), p);
+    const auto again = g.leaves(5);
+    for (int b = 0; b < 64; ++b)
+        EXPECT_EQ(again[b].probability, leaves[b].probability);
+    expectDrawsFollowTheTable(*ctx, g, 5);
+}
 
-    const std::uint32_t n = 1u << 20;
-    cl::Kernel k(ctx->program("test_guide_probes.cl"), "guide_sample_probe");
-    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "probe output");
-    ocl::setKernelArgs(k, g.params(), g.tables(), std::uint32_t{5}, std::uint32_t{17}, n, out);
-    ocl::launch(*ctx, k, "guide_sample_probe", n);
-    std::vector<cl_float4> v(n);
-    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, std::size_t{n} * 16, v.data());
-    std::vector<double> observed(FEN_GUIDE_BINS, 0.0), expected(FEN_GUIDE_BINS);
-    int outside = 0, wrongDensity = 0;
-    for (const cl_float4& s : v) {
-        std::uint32_t key;
-        std::memcpy(&key, &s.s[3], 4);
-        ASSERT_EQ(key / FEN_GUIDE_BINS, 5u);
-        const std::uint32_t b = key % FEN_GUIDE_BINS;
-        observed[b] += 1.0;
-        const double u1 = s.s[0] * 8.0, u2 = s.s[1] * 8.0;
-        outside += !(u1 >= b % 8 && u1 < b % 8 + 1 && u2 >= b / 8 && u2 < b / 8 + 1 && s.s[0] < 1.0f && s.s[1] < 1.0f);
-        wrongDensity += s.s[2] != static_cast<float>(64.0 * p[b]);
+TEST(GuideSampling, TreesRefineWhereTheDensityConcentratesAndTheDeviceFollows)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    FirstBounceGuide g(*ctx, options(), glm::dvec3(0.0), 8.0);
+    // A bright target near (0.30, 0.71) of the square smaller than any leaf, as a window far away:
+    // the leaf holding it has the same S = K whatever its size, so its m = sqrt(K A) keeps more
+    // than splitShare of the slot's (the background's 63 eighths hold about 4 against its 2 at
+    // depth 9, 1000 / 512). Each pass it must split once, with enough contributions, and nothing else.
+    const double tx = 0.30, ty = 0.71;
+    std::uint32_t deepest = 0;
+    for (int pass = 0; pass < 6; ++pass) {
+        const auto leaves = g.leaves(3);
+        std::vector<double> r(leaves.size(), 0.5);
+        for (std::size_t b = 0; b < leaves.size(); ++b) {
+            const auto& l = leaves[b];
+            if (tx >= l.x0 && tx < l.x0 + l.size && ty >= l.y0 && ty < l.y0 + l.size)
+                r[b] = 1e3;
+        }
+        writeSlot(*ctx, g, 3, r, 20);
+        g.learn();
+        const auto now = g.leaves(3);
+        EXPECT_EQ(now.size(), 64u + 3u * (pass + 1)) << "pass " << pass << ": one split per pass";
+        for (const auto& l : now)
+            if (tx >= l.x0 && tx < l.x0 + l.size && ty >= l.y0 && ty < l.y0 + l.size)
+                deepest = static_cast<std::uint32_t>(std::lround(-std::log2(l.size)));
     }
-    for (int b = 0; b < FEN_GUIDE_BINS; ++b)
-        expected[b] = n * p[b];
-    const double pv = test::chiSquarePValue(observed, expected);
-    std::printf("[ guide ] boxes drawn against the realised table: chi-square p = %.3g\n", pv);
-    EXPECT_GT(pv, 1e-3);
-    EXPECT_EQ(outside, 0) << "points outside the box drawn";
-    EXPECT_EQ(wrongDensity, 0) << "densities other than 64 P(b)";
+    EXPECT_EQ(deepest, 3u + 6u) << "the target's leaf, six levels below the initial eighth";
+    EXPECT_TRUE(g.learned(3));
+    expectDescentFindsTheLeaves(*ctx, g, 3);
+    expectDescentFindsTheLeaves(*ctx, g, 4);  // an untouched slot: the initial 8 x 8
+    expectDrawsFollowTheTable(*ctx, g, 3);
+    const auto report = g.report();
+    EXPECT_EQ(report["max_leaf_depth"], 9u);
+    EXPECT_EQ(report["splits_last_pass"], 1u);
+
+    // The checkpoint carries the trees: a guide loaded from it draws with the same tables.
+    StateWriter w;
+    g.save(w);
+    FirstBounceGuide h(*ctx, options(), glm::dvec3(0.0), 8.0);
+    StateReader rd(w.bytes(), "test state");
+    h.load(rd);
+    rd.end();
+    const auto a = g.leaves(3), b = h.leaves(3);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].probability, b[i].probability);
+        EXPECT_EQ(a[i].size, b[i].size);
+        EXPECT_EQ(a[i].index, b[i].index);
+    }
+}
+
+TEST(GuideSampling, TheMemoryCapHoldsAndTheLargestSharesSplitFirst)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    GuideOptions o = options();
+    o.splitShare = 0.001;
+    o.memoryMiB = 0.12;  // room for about 2,300 leaves: 16 slots x 64 to start with
+    FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
+    const std::size_t capacity = g.leafCapacity();
+    ASSERT_LT(capacity, 16u * 64u + 16u * 64u * 3u);
+    // Every leaf of every slot asks to split; slot s's leaves all have share 1/64, but the slots'
+    // ramps make leaf b of slot s weigh (1 + b) within it: the largest shares go first.
+    for (std::uint32_t s = 0; s < kSlots; ++s) {
+        std::vector<double> r(64);
+        for (int b = 0; b < 64; ++b)
+            r[b] = 1.0 + b;
+        writeSlot(*ctx, g, s, r, 100);
+    }
+    g.learn();
+    const auto report = g.report();
+    EXPECT_LE(g.leafCount(), capacity);
+    EXPECT_GT(g.leafCount(), capacity - 3);
+    EXPECT_GT(report["splits_deferred"].get<std::size_t>(), 0u);
+    // In every slot the leaves split are the heaviest: leaf b split implies leaf b + 1 split, the
+    // heaviest (63) split, the lightest candidate (2: share 3/2080 > 0.001) waits.
+    for (std::uint32_t s = 0; s < kSlots; ++s) {
+        const auto now = g.leaves(s);
+        const FirstBounceGuide fresh(*ctx, o, glm::dvec3(0.0), 8.0);
+        const auto before = fresh.leaves(s);  // the initial 8 x 8, in the same order
+        std::vector<bool> split(64);
+        for (int b = 0; b < 64; ++b)
+            split[b] = std::none_of(now.begin(), now.end(), [&](const auto& l) {
+                return l.x0 == before[b].x0 && l.y0 == before[b].y0 && l.size == before[b].size;
+            });
+        EXPECT_TRUE(split[63]) << "slot " << s;
+        EXPECT_FALSE(split[2]) << "slot " << s;
+        for (int b = 0; b + 1 < 64; ++b)
+            EXPECT_TRUE(!split[b] || split[b + 1]) << "slot " << s << ", leaf " << b;
+    }
 }
 
 TEST(GuideSampling, VerticesOfOneVoxelAndSideShareASlot)

@@ -71,7 +71,10 @@ TEST_P(FusedKernel, BitIdenticalToTheWavefront)
     EXPECT_EQ(w.emission.value("checksum", 0ull), f.emission.value("checksum", 0ull));
     EXPECT_EQ(w.emission.value("cells", 0), f.emission.value("cells", 0));
     if (c.guide) {
-        EXPECT_EQ(w.emission["guide"], f.emission["guide"]);
+        nlohmann::json wg = w.emission["guide"], fg = f.emission["guide"];
+        wg.erase("learn_seconds");  // a time, not a result
+        fg.erase("learn_seconds");
+        EXPECT_EQ(wg, fg);
         EXPECT_GT(f.emission["guide"].value("learned_slots", 0), 0) << "the guide learned nothing";
     }
     double sum = 0.0;
