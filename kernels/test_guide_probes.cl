@@ -19,12 +19,13 @@ kernel void guide_sample_probe(global const GuideParams* guide_params, global co
 }
 
 /* The slot of vertex i at x[i] with normal n[i]. */
-kernel void guide_slot_probe(global const GuideParams* guide_params, global const float4* x,
-                             global const float4* n, uint count, global uint* slot)
+kernel void guide_slot_probe(global const GuideParams* guide_params, global const uint* guide_tables,
+                             global const float4* x, global const float4* n, uint count, global uint* slot)
 {
     const uint i = get_global_id(0);
+    const Guide g = {guide_params, guide_tables};
     if (i < count)
-        slot[i] = guide_slot(guide_params, x[i].xyz, n[i].xyz);
+        slot[i] = guide_slot(&g, x[i].xyz, n[i].xyz);
 }
 
 /* The global leaf of slot `slot`'s tree that point sq[i] of the square lies in. */

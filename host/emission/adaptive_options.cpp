@@ -60,6 +60,8 @@ public:
                           "With adaptive --adaptive-guide on: finest direction leaves, 2^-D of the square's side, 3..12 (3: a fixed 8 x 8)");
         render.add_option("--adaptive-guide-split", guideSplit_,
                           "With adaptive --adaptive-guide on: split a direction leaf holding more than this share of its slot (default 0.02)");
+        render.add_option("--adaptive-guide-space-split", guideSpaceSplit_,
+                          "With adaptive --adaptive-guide on: halve a spatial leaf whose slots gathered this many contributions in a pass (default 4096)");
         render.add_option("--adaptive-guide-memory", guideMemory_,
                           "With adaptive --adaptive-guide on: MiB of device memory for the guide's trees (default 256)");
         render.add_option("--adaptive-target", target_,
@@ -80,7 +82,7 @@ public:
         }
         const bool tuned = estimate_ || initialSkyDepth_ || maxSkyDepth_ || initialDepth_ || maxDepth_ ||
                            defensive_ || diskShare_ || split_ || firstPass_ || maxCells_ || prior_ || weights_ ||
-                           target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideMemory_;
+                           target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
@@ -108,6 +110,7 @@ public:
         a.guide.voxelsAcross = guideVoxels_.value_or(a.guide.voxelsAcross);
         a.guide.maxDepth = guideDepth_.value_or(a.guide.maxDepth);
         a.guide.splitShare = guideSplit_.value_or(a.guide.splitShare);
+        a.guide.spatialSplitConnections = guideSpaceSplit_.value_or(a.guide.spatialSplitConnections);
         a.guide.memoryMiB = guideMemory_.value_or(a.guide.memoryMiB);
         validateAdaptiveOptions(a);
     }
@@ -115,7 +118,7 @@ public:
 private:
     std::optional<std::string> base_, estimate_, weights_, target_, guide_;
     std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_;
-    std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideMemory_;
+    std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_;
     std::optional<std::uint64_t> firstPass_;
     std::optional<std::uint32_t> maxCells_;
 };
@@ -176,6 +179,7 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
             {"guide_voxels", a.guide.voxelsAcross},
             {"guide_depth", a.guide.maxDepth},
             {"guide_split", a.guide.splitShare},
+            {"guide_space_split", a.guide.spatialSplitConnections},
             {"guide_memory_mib", a.guide.memoryMiB}};
 }
 

@@ -96,7 +96,7 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     const DeviceBvh& b = scene.bvh();
     const FirstBounceGuide* guide = ek.guide;
     if (!guide)
-        guide = (noGuide_ = std::make_unique<FirstBounceGuide>(ctx, GuideOptions{}, glm::dvec3(0.0), 1.0)).get();
+        guide = (noGuide_ = std::make_unique<FirstBounceGuide>(ctx, GuideOptions::off(), glm::dvec3(0.0), 1.0)).get();
     strategy.bindEmitArgs(emit_, 3);  // checks the arity: the strategy's arguments are the last
     if (mode == KernelMode::Fused) {
         cl_uint a = 0;

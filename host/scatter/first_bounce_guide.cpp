@@ -28,6 +28,15 @@ static_assert(FEN_GUIDE_MAX_DEPTH <= 14, "a leaf's corner has 14 bits per axis")
 constexpr double kBytesPerLeaf = 8.0 * FEN_GUIDE_STATS_WORDS + 8.0 + 16.0 + 16.0 / 3.0;
 constexpr double kMiB = 1024.0 * 1024.0;
 
+// Voxels along each side of the lattice cube (side 2R): the power of 2 at or above 2 voxelsAcross.
+std::uint32_t latticeCells(int voxelsAcross)
+{
+    std::uint32_t c = 1;
+    while (c < 2u * static_cast<std::uint32_t>(voxelsAcross))
+        c *= 2;
+    return c;
+}
+
 std::uint32_t floatBits(float f)
 {
     std::uint32_t u;
@@ -48,10 +57,12 @@ void validateGuideOptions(const GuideOptions& o)
     if (!(o.share > 0.0 && o.share <= 1.0))
         throw Error(cat("--adaptive-guide-share ", o.share, ": must be in (0, 1] (with 0 a direction the "
                         "guide has not seen light from could never be drawn: bias)"));
-    if (o.voxelsAcross < 1 || o.voxelsAcross > 4096)
-        throw Error(cat("--adaptive-guide-voxels ", o.voxelsAcross, ": must be in 1..4096"));
-    if (o.slots < 1 || o.slots > (1u << 20) || (o.slots & (o.slots - 1)) != 0)
-        throw Error(cat("guide slots ", o.slots, " must be a power of 2 up to 2^20"));
+    if (o.voxelsAcross < 1 || o.voxelsAcross > 64)
+        throw Error(cat("--adaptive-guide-voxels ", o.voxelsAcross, ": must be in 1..64"));
+    if (!(o.spatialSplitConnections >= 1.0))
+        throw Error(cat("--adaptive-guide-space-split ", o.spatialSplitConnections, ": must be at least 1 contribution"));
+    if (o.maxSpatialDepth < 0 || o.maxSpatialDepth > 30)
+        throw Error(cat("guide spatial depth ", o.maxSpatialDepth, " must be in 0..30"));
     if (!(o.minConnections >= 1.0))
         throw Error(cat("guide minimum contributions ", o.minConnections, " must be at least 1"));
     if (!(o.minGain >= 1.0))
@@ -64,10 +75,13 @@ void validateGuideOptions(const GuideOptions& o)
     if (!(o.minLeafConnections >= 1.0))
         throw Error(cat("guide minimum contributions per leaf ", o.minLeafConnections, " must be at least 1"));
     // The trees' initial 8 x 8 leaves must fit, with room to refine.
-    const double initialMiB = o.slots * (16.0 + 16.0 * kInitialNodes + kBytesPerLeaf * kInitialLeaves) / kMiB;
+    const double cells = latticeCells(o.voxelsAcross), slots = FEN_GUIDE_SIDES * cells * cells * cells;
+    const double initialMiB =
+        (slots * (16.0 + 16.0 * kInitialNodes + kBytesPerLeaf * kInitialLeaves) + 4.0 * cells * cells * cells) / kMiB;
     if (!(o.memoryMiB >= 2.0 * initialMiB && o.memoryMiB <= 65536.0))
         throw Error(cat("--adaptive-guide-memory ", o.memoryMiB, ": must be in ", std::ceil(2.0 * initialMiB),
-                        "..65536 MiB (twice what the ", o.slots, " slots' initial trees take)"));
+                        "..65536 MiB (twice what the initial trees of ", o.voxelsAcross,
+                        " voxels across the radius take)"));
 }
 
 FirstBounceGuide::Tree FirstBounceGuide::initialTree()
@@ -104,27 +118,44 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
     : ctx_(ctx), opt_(o)
 {
     validateGuideOptions(opt_);
-    const double voxel_m = std::max(radius_m, 1e-6) / opt_.voxelsAcross;
-    deviceParams_.lattice = {float(centre.x - radius_m), float(centre.y - radius_m), float(centre.z - radius_m),
-                             float(1.0 / voxel_m)};
+    const double r = std::max(radius_m, 1e-6);
+    deviceParams_.lattice = {float(centre.x - r), float(centre.y - r), float(centre.z - r), float(1.0 / (2.0 * r))};
     deviceParams_.stats_scale = static_cast<float>(std::ldexp(1.0, kStatsFixedPointBits));
-    const std::size_t slots = opt_.enabled ? opt_.slots : 0u;
-    deviceParams_.slots = static_cast<std::uint32_t>(slots);
+    side_m_ = 2.0 * r;
+    std::size_t voxels = 1;
     if (opt_.enabled) {
-        trees_.assign(slots, initialTree());
-        const double fixedBytes = slots * 16.0 * (1.0 + 1.0);  // records, a node per slot beyond L/3
-        leafCapacity_ = static_cast<std::size_t>((opt_.memoryMiB * kMiB - fixedBytes) / kBytesPerLeaf);
-        nodeCapacity_ = leafCapacity_ / 3 + slots;
+        cells_ = latticeCells(opt_.voxelsAcross);
+        voxels = std::size_t{cells_} * cells_ * cells_;
+        for (std::uint32_t v = 0; v < voxels; ++v) {
+            voxelWord_.push_back(FEN_GUIDE_LEAF | v);
+            SpatialLeaf l;
+            l.voxel = v;
+            spatialLeaves_.push_back(l);
+        }
+        trees_.assign(FEN_GUIDE_SIDES * voxels, initialTree());
+        // Per leaf: its own bytes, and its share of a slot's record and a spatial node when every
+        // slot has at least the initial 64 leaves.
+        const double perLeaf = kBytesPerLeaf + (16.0 + 8.0 / FEN_GUIDE_SIDES) / kInitialLeaves;
+        leafCapacity_ = static_cast<std::size_t>((opt_.memoryMiB * kMiB - 4.0 * voxels) / perLeaf);
+        slotCapacity_ = std::max(trees_.size(), leafCapacity_ / kInitialLeaves);
+        spatialCapacity_ = slotCapacity_ / FEN_GUIDE_SIDES;
+        nodeCapacity_ = leafCapacity_ / 3 + slotCapacity_;
         columnCapacity_ = 2 * leafCapacity_;
     } else {
-        leafCapacity_ = nodeCapacity_ = columnCapacity_ = 1;  // placeholders the kernels never read
+        // placeholders the kernels never read
+        slotCapacity_ = spatialCapacity_ = leafCapacity_ = nodeCapacity_ = columnCapacity_ = 1;
+        voxelWord_.assign(1, FEN_GUIDE_LEAF);
     }
-    deviceParams_.nodes_at = static_cast<std::uint32_t>(4 * std::max<std::size_t>(slots, 1));
-    deviceParams_.leaves_at = static_cast<std::uint32_t>(deviceParams_.nodes_at + 4 * nodeCapacity_);
-    deviceParams_.columns_at = static_cast<std::uint32_t>(deviceParams_.leaves_at + 2 * leafCapacity_);
-    const std::size_t tableWords = deviceParams_.columns_at + 2 * columnCapacity_;
+    deviceParams_.cells = cells_;
+    deviceParams_.voxels_at = static_cast<std::uint32_t>(4 * slotCapacity_);
+    deviceParams_.spatial_at = static_cast<std::uint32_t>(deviceParams_.voxels_at + voxels);
+    const std::size_t nodesAt = deviceParams_.spatial_at + 2 * spatialCapacity_;
+    const std::size_t tableWords = nodesAt + 4 * nodeCapacity_ + 2 * leafCapacity_ + 2 * columnCapacity_;
     if (tableWords >= (std::size_t{1} << 32))
         throw Error(cat("--adaptive-guide-memory ", opt_.memoryMiB, ": the tables would pass 2^32 words"));
+    deviceParams_.nodes_at = static_cast<std::uint32_t>(nodesAt);
+    deviceParams_.leaves_at = static_cast<std::uint32_t>(deviceParams_.nodes_at + 4 * nodeCapacity_);
+    deviceParams_.columns_at = static_cast<std::uint32_t>(deviceParams_.leaves_at + 2 * leafCapacity_);
     rebuild();
     const auto add = [this](std::size_t bytes) {
         deviceBytes_ += bytes;
@@ -273,7 +304,13 @@ void FirstBounceGuide::rebuild()
             t.leaves[b].density = static_cast<float>(cdf.probability(b) / t.leaves[b].area());
     }
 
-    tablesHost_.assign(opt_.enabled ? deviceParams_.columns_at : 4, 0u);
+    deviceParams_.slots = static_cast<std::uint32_t>(trees_.size());
+    tablesHost_.assign(opt_.enabled ? deviceParams_.columns_at : deviceParams_.nodes_at, 0u);
+    std::copy(voxelWord_.begin(), voxelWord_.end(), tablesHost_.begin() + deviceParams_.voxels_at);
+    for (std::size_t n = 0; n < spatialNodes_.size(); ++n) {
+        tablesHost_[deviceParams_.spatial_at + 2 * n] = spatialNodes_[n][0];
+        tablesHost_[deviceParams_.spatial_at + 2 * n + 1] = spatialNodes_[n][1];
+    }
     std::uint32_t nodeAt = 0, leafAt = 0, columnAt = 0;
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
@@ -302,13 +339,85 @@ void FirstBounceGuide::rebuild()
             columnAt += static_cast<std::uint32_t>(t.alias.size() / 2);
         }
     }
-    if (nodeAt > nodeCapacity_ || leafAt > leafCapacity_ || columnAt > columnCapacity_)
+    if (nodeAt > nodeCapacity_ || leafAt > leafCapacity_ || columnAt > columnCapacity_ ||
+        trees_.size() > slotCapacity_ || spatialNodes_.size() > spatialCapacity_)
         throw Error("guide tables: beyond the capacity they were sized for");  // refine() keeps within
 }
 
 void FirstBounceGuide::upload()
 {
+    ctx_.queue().enqueueWriteBuffer(params_, CL_TRUE, 0, sizeof deviceParams_, &deviceParams_);
     ctx_.queue().enqueueWriteBuffer(tables_, CL_TRUE, 0, tablesHost_.size() * 4, tablesHost_.data());
+}
+
+std::size_t FirstBounceGuide::nodeCount() const
+{
+    std::size_t n = 0;
+    for (const Tree& t : trees_)
+        n += t.nodes.size();
+    return n;
+}
+
+// Halves every spatial leaf whose slots gathered spatialSplitConnections contributions in the pass
+// (`pass`, per slot as it was read; the slots after it are none), most first while the capacity
+// lasts. Each half starts from its parent's trees with half their totals: the parent's learning is
+// the best guess for both until the next pass tells them apart. Returns the splits made.
+std::size_t FirstBounceGuide::refineSpace(const std::vector<double>& passConnections)
+{
+    struct Candidate {
+        double connections;
+        std::uint32_t leaf;
+    };
+    std::vector<Candidate> cand;
+    for (std::uint32_t l = 0; l < spatialLeaves_.size(); ++l) {
+        double c = 0.0;
+        for (std::uint32_t k = 0; k < FEN_GUIDE_SIDES; ++k)
+            c += passConnections[FEN_GUIDE_SIDES * l + k];
+        if (c >= opt_.spatialSplitConnections && static_cast<int>(spatialLeaves_[l].depth) < opt_.maxSpatialDepth)
+            cand.push_back({c, l});
+    }
+    std::sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) {
+        return a.connections != b.connections ? a.connections > b.connections : a.leaf < b.leaf;
+    });
+    std::size_t made = 0, nodes = nodeCount();
+    for (const Candidate& c : cand) {
+        std::size_t leaves = 0, treeNodes = 0;
+        for (std::uint32_t k = 0; k < FEN_GUIDE_SIDES; ++k) {
+            leaves += trees_[FEN_GUIDE_SIDES * c.leaf + k].leaves.size();
+            treeNodes += trees_[FEN_GUIDE_SIDES * c.leaf + k].nodes.size();
+        }
+        if (leafCount_ + leaves > leafCapacity_ || nodes + treeNodes > nodeCapacity_ ||
+            trees_.size() + FEN_GUIDE_SIDES > slotCapacity_ || spatialNodes_.size() + 1 > spatialCapacity_) {
+            deferredSplits_ += 1;
+            continue;
+        }
+        const auto node = static_cast<std::uint32_t>(spatialNodes_.size());
+        const auto upper = static_cast<std::uint32_t>(spatialLeaves_.size());
+        SpatialLeaf& lower = spatialLeaves_[c.leaf];
+        if (lower.node < 0)
+            voxelWord_[lower.voxel] = node;
+        else
+            spatialNodes_[static_cast<std::size_t>(lower.node)][lower.half] = node;
+        spatialNodes_.push_back({FEN_GUIDE_LEAF | c.leaf, FEN_GUIDE_LEAF | upper});
+        lower.node = node;
+        lower.half = 0;
+        lower.depth += 1;
+        SpatialLeaf u = lower;
+        u.half = 1;
+        spatialLeaves_.push_back(u);
+        for (std::uint32_t k = 0; k < FEN_GUIDE_SIDES; ++k) {
+            Tree& t = trees_[FEN_GUIDE_SIDES * c.leaf + k];
+            for (Leaf& l : t.leaves) {
+                l.sumSq /= 2.0;
+                l.connections /= 2.0;
+            }
+            trees_.push_back(t);  // the upper half's slot FEN_GUIDE_SIDES upper + k
+        }
+        leafCount_ += leaves;
+        nodes += treeNodes;
+        ++made;
+    }
+    return made;
 }
 
 void FirstBounceGuide::learn()
@@ -332,11 +441,20 @@ void FirstBounceGuide::learn()
             l.connections += pass[s][i].connections;
         }
     }
+    std::vector<double> passConnections(trees_.size(), 0.0);
+    for (std::size_t t = 0; t < pass.size(); ++t)
+        for (const Leaf& l : pass[t])
+            passConnections[t] += l.connections;
     lastSplits_ = refine(pass);
+    leafCount_ = 0;
+    for (const Tree& t : trees_)
+        leafCount_ += t.leaves.size();
+    lastSpatialSplits_ = refineSpace(passConnections);
     rebuild();
     upload();
     clearStats();
-    learnSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    lastLearnSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    learnSeconds_ += lastLearnSeconds_;
 }
 
 std::vector<FirstBounceGuide::LeafView> FirstBounceGuide::leaves(std::uint32_t slot) const
@@ -380,21 +498,77 @@ void FirstBounceGuide::save(StateWriter& w) const
             leaves.push_back(l.connections);
         }
     }
+    // The spatial trees, voxel by voxel, depth first: 1 a node (its lower half, then its upper), or
+    // 0 and the spatial leaf's index.
+    std::vector<std::uint64_t> space;
+    std::function<void(std::uint32_t)> walk = [&](std::uint32_t word) {
+        if (word & FEN_GUIDE_LEAF) {
+            space.push_back(0);
+            space.push_back(word & ~FEN_GUIDE_LEAF);
+            return;
+        }
+        space.push_back(1);
+        walk(spatialNodes_[word][0]);
+        walk(spatialNodes_[word][1]);
+    };
+    for (std::uint32_t word : voxelWord_)
+        walk(word);
+    w.u64s("guide.space", space);
     w.u64s("guide.slots", slots);
     w.u64s("guide.shape", shape);
     w.f64s("guide.leaves", leaves);
-    w.u64s("guide.splits", {lastSplits_, deferredSplits_});
+    w.u64s("guide.splits", {lastSplits_, deferredSplits_, lastSpatialSplits_});
 }
 
 void FirstBounceGuide::load(StateReader& r)
 {
-    const std::vector<std::uint64_t> slots = r.u64s("guide.slots", trees_.size());
+    // The spatial trees first: they say how many slots there are.
+    const std::vector<std::uint64_t> space = r.u64s("guide.space", 2 * spatialCapacity_ + 4 * voxelWord_.size());
+    std::vector<std::uint32_t> voxelWord(voxelWord_.size());
+    std::vector<std::array<std::uint32_t, 2>> spatialNodes;
+    std::vector<SpatialLeaf> spatialLeaves;
+    std::vector<char> seenLeaf;
+    std::size_t sp = 0;
+    std::function<std::uint32_t(std::uint32_t, std::int64_t, std::uint32_t, std::uint32_t)> parseSpace =
+        [&](std::uint32_t voxel, std::int64_t node, std::uint32_t half, std::uint32_t depth) -> std::uint32_t {
+        if (sp >= space.size() || space[sp] > 1)
+            r.fail("guide.space", "ends early or holds a flag other than 0 and 1");
+        if (space[sp++] == 0) {
+            if (sp >= space.size() || space[sp] >= spatialCapacity_ || space[sp] >= (1u << 31))
+                r.fail("guide.space", "a spatial leaf out of range");
+            const auto leaf = static_cast<std::uint32_t>(space[sp++]);
+            if (leaf >= seenLeaf.size()) {
+                seenLeaf.resize(leaf + 1, 0);
+                spatialLeaves.resize(leaf + 1);
+            }
+            if (seenLeaf[leaf])
+                r.fail("guide.space", "a spatial leaf listed twice");
+            seenLeaf[leaf] = 1;
+            spatialLeaves[leaf] = {voxel, node, half, depth};
+            return FEN_GUIDE_LEAF | leaf;
+        }
+        if (depth >= static_cast<std::uint32_t>(opt_.maxSpatialDepth) || spatialNodes.size() >= spatialCapacity_)
+            r.fail("guide.space", "a spatial tree deeper or larger than the guide allows");
+        const auto at = static_cast<std::uint32_t>(spatialNodes.size());
+        spatialNodes.push_back({});
+        const std::uint32_t lower = parseSpace(voxel, at, 0, depth + 1);
+        spatialNodes[at][0] = lower;
+        const std::uint32_t upper = parseSpace(voxel, at, 1, depth + 1);
+        spatialNodes[at][1] = upper;
+        return at;
+    };
+    for (std::uint32_t v = 0; v < voxelWord.size(); ++v)
+        voxelWord[v] = parseSpace(v, -1, 0, 0);
+    if (sp != space.size() || std::find(seenLeaf.begin(), seenLeaf.end(), 0) != seenLeaf.end() ||
+        FEN_GUIDE_SIDES * seenLeaf.size() > slotCapacity_)
+        r.fail("guide.space", "values left over, a spatial leaf missing, or more slots than the memory holds");
+    const std::vector<std::uint64_t> slots = r.u64s("guide.slots", FEN_GUIDE_SIDES * seenLeaf.size());
     const std::vector<std::uint64_t> shape = r.u64s("guide.shape", 4 * nodeCapacity_);
     const std::vector<double> leaves = r.f64s("guide.leaves", 2 * leafCapacity_);
-    const std::vector<std::uint64_t> splits = r.u64s("guide.splits", 2);
-    if (splits.size() != 2)
-        r.fail("guide.splits", "not (last, deferred)");
-    std::vector<Tree> trees(trees_.size(), initialTree());
+    const std::vector<std::uint64_t> splits = r.u64s("guide.splits", 3);
+    if (splits.size() != 3)
+        r.fail("guide.splits", "not (last, deferred, spatial)");
+    std::vector<Tree> trees(FEN_GUIDE_SIDES * seenLeaf.size(), initialTree());
     std::size_t at = 0, leafAt = 0, total = 0;
     for (std::size_t k = 0; k < slots.size(); ++k) {
         if (slots[k] >= trees.size() || (k > 0 && slots[k] <= slots[k - 1]))
@@ -445,8 +619,12 @@ void FirstBounceGuide::load(StateReader& r)
     if (total > leafCapacity_ || nodes > nodeCapacity_)
         r.fail("guide.shape", "more leaves than --adaptive-guide-memory holds");
     trees_ = std::move(trees);
+    voxelWord_ = std::move(voxelWord);
+    spatialNodes_ = std::move(spatialNodes);
+    spatialLeaves_ = std::move(spatialLeaves);
     lastSplits_ = splits[0];
     deferredSplits_ = splits[1];
+    lastSpatialSplits_ = splits[2];
     rebuild();
     upload();
     clearStats();
@@ -469,15 +647,23 @@ nlohmann::json FirstBounceGuide::report() const
         }
         checksum.value(t.learned);
     }
-    const double used = trees_.size() * 16.0 + leafCount_ * kBytesPerLeaf;
+    const double used = trees_.size() * 16.0 + leafCount_ * kBytesPerLeaf + 4.0 * voxelWord_.size() +
+                        8.0 * spatialNodes_.size();
+    std::uint32_t maxSpatial = 0;
+    for (const SpatialLeaf& l : spatialLeaves_)
+        maxSpatial = std::max(maxSpatial, l.depth);
     return {{"enabled", true},
-            {"slots", opt_.slots},
-            {"voxel_m", 1.0 / deviceParams_.lattice.w},
+            {"slots", trees_.size()},
+            {"voxel_m", side_m_ / cells_},
+            {"spatial_leaves", spatialLeaves_.size()},
+            {"max_spatial_depth", maxSpatial},
+            {"spatial_splits_last_pass", lastSpatialSplits_},
             {"share", opt_.share},
             {"min_connections", opt_.minConnections},
             {"min_gain", opt_.minGain},
             {"max_depth", opt_.maxDepth},
             {"split_share", opt_.splitShare},
+            {"space_split", opt_.spatialSplitConnections},
             {"candidate_slots", candidateSlots_},
             {"learned_slots", learnedSlots_},
             {"leaves", leafCount_},
@@ -488,6 +674,7 @@ nlohmann::json FirstBounceGuide::report() const
             {"connections", connections},
             {"checksum", checksum.h},
             {"learn_seconds", learnSeconds_},
+            {"learn_seconds_last_pass", lastLearnSeconds_},
             {"memory_bytes", deviceBytes_},
             {"memory_used_bytes", static_cast<std::uint64_t>(used)}};
 }

@@ -6,7 +6,7 @@
 // Light that must bounce off something outside before it can enter (the ground in front of a
 // window, a sunlit wall across a courtyard) is what emission alone cannot steer: the emitted ray
 // only decides where the bounce happens, the bounce decides whether the light gets in. The guide
-// learns, per slot (a voxel of the scene and the side a surface faces), which leaves of a quadtree
+// learns, per slot (a spatial leaf of the scene and the side a surface faces), which leaves of a quadtree
 // over the cosine-hemisphere's square send a unit of weight to the camera, and the device draws
 // the first bounce from that: leaf b has probability P(b) = (1 - share) m(b) / sum m + share A(b),
 // density d(b) = P(b) / A(b), with A(b) its area, m(b) = sqrt(S(b) A(b)) and S(b) the leaf's
@@ -60,15 +60,27 @@ struct GuideOptions {
     double share = 0.25;              // the uniform table's share in every learned one
     double minConnections = 32.0;     // contributions a slot needs before it is learned
     double minGain = 2.0;             // ... and the second-moment cut its table must promise
-    // Lattice: voxels across the scene's bounding sphere's radius. Coarse on purpose: a slot must
-    // gather contributions before it is steered, and far from the camera they are rare (R/4 beat
-    // R/32 on all six measured scenes: docs/results/guide.md).
+    // Lattice: voxels across the scene's bounding sphere's radius (the cube of side 2R then has
+    // the next power of 2 >= 2 voxelsAcross voxels a side). Coarse on purpose: a slot must gather
+    // contributions before it is steered, and far from the camera they are rare (R/4 beat R/32 on
+    // all six measured scenes: docs/results/guide.md); the spatial splits refine it where they
+    // are not.
     int voxelsAcross = 4;
-    std::uint32_t slots = 1u << 13;   // hash slots (a power of 2)
+    // A spatial leaf whose six slots gathered this many contributions in a pass is halved (along
+    // x, y, z in turn), down to maxSpatialDepth halvings below its voxel.
+    double spatialSplitConnections = 4096.0;
+    int maxSpatialDepth = 9;
     int maxDepth = FEN_GUIDE_MAX_DEPTH;  // leaves down to 2^-maxDepth of the square's side (3: 8 x 8)
     double splitShare = 0.02;         // a leaf holding more of its slot's m than this is split ...
     double minLeafConnections = 8.0;  // ... once it has seen this many contributions
     double memoryMiB = 256.0;         // device memory for the trees and their statistics
+    // No guide: placeholders bound where a strategy has none (GuideParams.slots = 0).
+    static GuideOptions off()
+    {
+        GuideOptions o;
+        o.enabled = false;
+        return o;
+    }
 };
 // Throws a one-line error naming the option for a value out of range.
 void validateGuideOptions(const GuideOptions& o);
@@ -95,6 +107,8 @@ public:
         std::uint32_t index;   // its global index: the key of its statistics
     };
     std::vector<LeafView> leaves(std::uint32_t slot) const;
+    std::size_t slotCount() const { return trees_.size(); }
+    std::size_t spatialLeaves() const { return spatialLeaves_.size(); }
     bool learned(std::uint32_t slot) const { return trees_.at(slot).learned; }
     std::uint32_t learnedSlots() const { return learnedSlots_; }
     std::size_t leafCount() const { return leafCount_; }
@@ -119,20 +133,36 @@ private:
         std::uint32_t aliasShift = 31;
         bool learned = false;
     };
+    // A spatial leaf: where it hangs (a voxel's word, or a node's lower or upper child) and how many
+    // halvings below its voxel it is.
+    struct SpatialLeaf {
+        std::uint32_t voxel = 0;           // its voxel (for reports and checks)
+        std::int64_t node = -1;            // -1: the voxel's own word; else the spatial node ...
+        std::uint32_t half = 0;            // ... and which child (0 lower, 1 upper)
+        std::uint32_t depth = 0;
+    };
     static Tree initialTree();
     static bool isInitial(const Tree& t);  // the full tree of depth FEN_GUIDE_INITIAL_DEPTH
     std::size_t refine(const std::vector<std::vector<Leaf>>& pass);
+    std::size_t refineSpace(const std::vector<double>& passConnections);
+    std::size_t nodeCount() const;
     void rebuild();
     void upload();
     ocl::Context& ctx_;
     GuideOptions opt_;
     dev::GuideParams deviceParams_{};
-    std::vector<Tree> trees_;
+    std::vector<Tree> trees_;                      // per slot: FEN_GUIDE_SIDES per spatial leaf
+    std::uint32_t cells_ = 1;                      // voxels along each side of the lattice cube
+    double side_m_ = 0.0;                          // the cube's side
+    std::vector<std::uint32_t> voxelWord_;         // per voxel: FEN_GUIDE_LEAF | spatial leaf, or a node
+    std::vector<std::array<std::uint32_t, 2>> spatialNodes_;
+    std::vector<SpatialLeaf> spatialLeaves_;
+    std::size_t slotCapacity_ = 0, spatialCapacity_ = 0, lastSpatialSplits_ = 0;
     std::size_t leafCapacity_ = 0, nodeCapacity_ = 0, columnCapacity_ = 0;
     std::size_t leafCount_ = 0, deferredSplits_ = 0, lastSplits_ = 0;
     std::vector<std::uint32_t> tablesHost_;  // slot records, nodes, leaves, columns (fen_guide.h)
     std::uint32_t learnedSlots_ = 0, candidateSlots_ = 0, maxDepthSeen_ = 0;
-    double learnSeconds_ = 0.0;
+    double learnSeconds_ = 0.0, lastLearnSeconds_ = 0.0;
     cl::Buffer params_, tables_, stats_;
     std::size_t deviceBytes_ = 0;
 };

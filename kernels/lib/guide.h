@@ -27,20 +27,32 @@ typedef struct {
     global const uint* tables;  /* slot records, nodes, leaves, alias columns (fen_guide.h) */
 } Guide;
 
-/* The slot of a vertex at x whose light arrived on side n (unit): its voxel and the axis-aligned
-   side n faces most, hashed. Coordinates saturate far outside the lattice (all one slot there). */
-static inline uint guide_slot(global const GuideParams* gp, float3 x, float3 n)
+/* The slot of a vertex at x whose light arrived on side n (unit): the spatial leaf x lies in and
+   the axis-aligned side n faces most. The voxel comes from arithmetic; only a voxel the host has
+   split reads nodes, halving the voxel along x, y, z in turn (exact in floating point). Points
+   outside the cube (none in the scene) take the nearest voxel. */
+static inline uint guide_slot(const Guide* g, float3 x, float3 n)
 {
-    const int3 v = convert_int3_sat_rtn((x - gp->lattice.xyz) * gp->lattice.w);
+    global const GuideParams* gp = g->params;
     const float3 a = fabs(n);
     const uint axis = a.x >= a.y && a.x >= a.z ? 0u : (a.y >= a.z ? 1u : 2u);
     const float na = axis == 0u ? n.x : (axis == 1u ? n.y : n.z);
     const uint side = 2u * axis + (na < 0.0f ? 1u : 0u);
-    uint h = (uint)v.x * 73856093u ^ (uint)v.y * 19349663u ^ (uint)v.z * 83492791u ^ side * 2654435761u;
-    h ^= h >> 16;
-    h *= 0x7feb352du;
-    h ^= h >> 15;
-    return h & (gp->slots - 1u);
+    const float cells = (float)gp->cells;
+    const float3 p = fmin(fmax((x - gp->lattice.xyz) * gp->lattice.w * cells, (float3)(0.0f)),
+                          (float3)(cells * 0x1.fffffep-1f));
+    const uint3 v = convert_uint3_rtz(p);
+    float3 q = p - convert_float3(v); /* where x lies in its voxel, [0, 1)^3 */
+    uint word = g->tables[gp->voxels_at + v.x + gp->cells * (v.y + gp->cells * v.z)];
+    for (uint depth = 0u; !(word & FEN_GUIDE_LEAF) && depth < 64u; ++depth) {
+        const uint k = depth % 3u;
+        const float c = k == 0u ? q.x : (k == 1u ? q.y : q.z);
+        const uint up = c >= 0.5f;
+        const float c2 = c * 2.0f - (float)up;
+        q = k == 0u ? (float3)(c2, q.y, q.z) : (k == 1u ? (float3)(q.x, c2, q.z) : (float3)(q.x, q.y, c2));
+        word = g->tables[gp->spatial_at + 2u * word + up];
+    }
+    return FEN_GUIDE_SIDES * (word & ~FEN_GUIDE_LEAF) + side;
 }
 
 /* The slot's record (shared/fen_guide.h): root node, first leaf, first column, learned | shift. */

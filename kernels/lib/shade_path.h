@@ -159,7 +159,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
         } else {
             /* the first diffuse vertex: where a path may split, and where the guide steers */
             p->flags |= FEN_PATH_BRANCHED;
-            const uint slot = guide->params->slots ? guide_slot(guide->params, x, n) : 0u;
+            const uint slot = guide->params->slots ? guide_slot(guide, x, n) : 0u;
             /* not the portal complement's estimate-only paths: what they measure needs no precision */
             if (params->split_max > 1u && !(as_uint(p->beta.w) & FEN_PART_ESTIMATE_ONLY)) {
                 const float y = rgb_luminance(p->beta.xyz);

@@ -14,9 +14,11 @@
  * The quadtree's resolution follows the learned density: a leaf holding much of it is split on the
  * next pass, down to FEN_GUIDE_MAX_DEPTH (cells of 2^-12 of the square's side), so that a window a
  * few thousandths of a steradian wide, seen from far outside, gets leaves of its own.
- * Vertices share a tree per slot: the voxel of the vertex (a lattice over the scene) and the side
- * its normal faces most (6), hashed into GuideParams.slots slots. A collision mixes two places'
- * trees: it costs precision, never correctness.
+ * Vertices share a tree per slot: the spatial leaf the vertex lies in and the side its normal faces
+ * most (6), slot = 6 leaf + side. The spatial leaves refine a lattice of voxels over the scene's
+ * bounding cube: each voxel is the root of a binary tree that halves it along x, y, z in turn, split
+ * on the host where a pass's contributions accumulate, so that the ground right in front of a
+ * window gets directions of its own, not those averaged over metres of it.
  * Statistics per leaf (the global leaf index is the key), FEN_GUIDE_STATS_WORDS fen_u64 each: the
  * sum, 128-bit fixed point at GuideParams.stats_scale^2, of v^2 for every camera contribution a
  * path made after leaving the vertex through the leaf, v = the contribution over (the path's weight
@@ -33,6 +35,7 @@
 
 #define FEN_GUIDE_INITIAL_DEPTH 3  /* every slot's tree starts as 8 x 8 leaves */
 #define FEN_GUIDE_MAX_DEPTH 12     /* leaves down to 2^-12 of the square's side */
+#define FEN_GUIDE_SIDES 6          /* slots per spatial leaf: the side a vertex's normal faces most */
 #define FEN_GUIDE_SUMSQ_LO 0
 #define FEN_GUIDE_SUMSQ_HI 1
 #define FEN_GUIDE_CONNECTIONS 2
@@ -47,8 +50,13 @@
 #define FEN_GUIDE_LEARNED 0x80000000u
 #define FEN_GUIDE_INITIAL 0x40000000u
 
-/* The tables buffer (fen_u32 words), four sections from the word offsets in GuideParams:
+/* The tables buffer (fen_u32 words), six sections from the word offsets in GuideParams:
  *  - slot records, uint4 per slot: (root node, first leaf, first alias column, w above);
+ *  - voxels, one word per voxel of the lattice (x fastest): FEN_GUIDE_LEAF | its spatial leaf, or
+ *    the spatial node its tree starts at;
+ *  - spatial nodes, uint2 each: the children for the lower and the upper half along the axis of
+ *    the node's depth below its voxel (x, y, z, x, ...), each FEN_GUIDE_LEAF | spatial leaf or a
+ *    spatial node;
  *  - nodes, uint4 per node: its four children, quadrant q = (u1 >= 1/2) + 2 (u2 >= 1/2);
  *  - leaves, uint2 per leaf: (as_uint d, the leaf's place: x0 | y0 << 14 | depth << 28, x0 and y0
  *    its corner in units of 2^-FEN_GUIDE_MAX_DEPTH);
@@ -59,13 +67,15 @@
 FEN_NS_BEGIN
 
 typedef struct {
-    fen_float4 lattice;   /* xyz: a corner of the voxel lattice (m); w: voxels per metre */
-    fen_u32 slots;        /* hash slots (a power of 2); 0: no guide (every vertex scatters as cosine) */
+    fen_float4 lattice;   /* xyz: the lattice cube's lowest corner (m); w: 1 / its side (1/m) */
+    fen_u32 slots;        /* slots in use (6 per spatial leaf); 0: no guide (the cosine everywhere) */
     fen_u32 nodes_at;     /* word offsets of the sections of the tables buffer (above) */
     fen_u32 leaves_at;
     fen_u32 columns_at;
     fen_f32 stats_scale;  /* fixed-point units per unit of the statistic */
-    fen_u32 reserved0, reserved1, reserved2;
+    fen_u32 voxels_at;
+    fen_u32 spatial_at;
+    fen_u32 cells;        /* voxels along each side of the cube (a power of 2) */
 } GuideParams;
 FEN_ASSERT_SIZE(GuideParams, 48);
 FEN_ASSERT_OFFSET(GuideParams, slots, 16);

@@ -15,6 +15,7 @@
 
 #include "cl/launch.h"
 #include "io/state_io.h"
+#include "util/error.h"
 #include "scatter/first_bounce_guide.h"
 #include "support/cl_fixture.h"
 #include "support/statistics.h"
@@ -22,13 +23,10 @@
 namespace fen {
 namespace {
 
-constexpr std::uint32_t kSlots = 16;
-
 GuideOptions options()
 {
     GuideOptions o;
     o.enabled = true;
-    o.slots = kSlots;
     o.share = 0.25;
     o.minConnections = 32.0;
     return o;
@@ -211,14 +209,16 @@ TEST(GuideSampling, TheMemoryCapHoldsAndTheLargestSharesSplitFirst)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     GuideOptions o = options();
+    o.voxelsAcross = 1;  // a 2 x 2 x 2 lattice: 48 slots of 64 leaves to start with
     o.splitShare = 0.001;
-    o.memoryMiB = 0.12;  // room for about 2,300 leaves: 16 slots x 64 to start with
+    o.memoryMiB = 0.36;  // room for about 7,000 leaves
     FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
-    const std::size_t capacity = g.leafCapacity();
-    ASSERT_LT(capacity, 16u * 64u + 16u * 64u * 3u);
-    // Every leaf of every slot asks to split; slot s's leaves all have share 1/64, but the slots'
-    // ramps make leaf b of slot s weigh (1 + b) within it: the largest shares go first.
-    for (std::uint32_t s = 0; s < kSlots; ++s) {
+    const std::size_t capacity = g.leafCapacity(), slots = g.slotCount();
+    ASSERT_EQ(slots, 48u);
+    ASSERT_LT(capacity, slots * 64u + slots * 62u * 3u);
+    // Every leaf but two of every slot asks to split: within a slot leaf b weighs (1 + b), so
+    // shares run from 1/2080 to 64/2080, and leaves 2..63 pass 0.001. The largest go first.
+    for (std::uint32_t s = 0; s < slots; ++s) {
         std::vector<double> r(64);
         for (int b = 0; b < 64; ++b)
             r[b] = 1.0 + b;
@@ -229,11 +229,12 @@ TEST(GuideSampling, TheMemoryCapHoldsAndTheLargestSharesSplitFirst)
     EXPECT_LE(g.leafCount(), capacity);
     EXPECT_GT(g.leafCount(), capacity - 3);
     EXPECT_GT(report["splits_deferred"].get<std::size_t>(), 0u);
+    EXPECT_EQ(report["spatial_splits_last_pass"], 0u) << "6,400 contributions per voxel, but no room";
     // In every slot the leaves split are the heaviest: leaf b split implies leaf b + 1 split, the
     // heaviest (63) split, the lightest candidate (2: share 3/2080 > 0.001) waits.
-    for (std::uint32_t s = 0; s < kSlots; ++s) {
+    const FirstBounceGuide fresh(*ctx, o, glm::dvec3(0.0), 8.0);
+    for (std::uint32_t s = 0; s < slots; ++s) {
         const auto now = g.leaves(s);
-        const FirstBounceGuide fresh(*ctx, o, glm::dvec3(0.0), 8.0);
         const auto before = fresh.leaves(s);  // the initial 8 x 8, in the same order
         std::vector<bool> split(64);
         for (int b = 0; b < 64; ++b)
@@ -247,25 +248,133 @@ TEST(GuideSampling, TheMemoryCapHoldsAndTheLargestSharesSplitFirst)
     }
 }
 
+// The slots the device finds for points x with normals n.
+std::vector<std::uint32_t> slotsOf(ocl::Context& ctx, const FirstBounceGuide& g, const std::vector<cl_float4>& x,
+                                   const std::vector<cl_float4>& n)
+{
+    const auto count = static_cast<std::uint32_t>(x.size());
+    cl::Buffer xb = ctx.buffer(CL_MEM_READ_ONLY, x.size() * 16, "points", const_cast<cl_float4*>(x.data()));
+    cl::Buffer nb = ctx.buffer(CL_MEM_READ_ONLY, n.size() * 16, "normals", const_cast<cl_float4*>(n.data()));
+    cl::Buffer sb = ctx.buffer(CL_MEM_WRITE_ONLY, x.size() * 4, "slots");
+    cl::Kernel k(ctx.program("test_guide_probes.cl"), "guide_slot_probe");
+    ocl::setKernelArgs(k, g.params(), g.tables(), xb, nb, count, sb);
+    ocl::launch(ctx, k, "guide_slot_probe", count);
+    std::vector<std::uint32_t> slot(x.size());
+    ctx.queue().enqueueReadBuffer(sb, CL_TRUE, 0, slot.size() * 4, slot.data());
+    return slot;
+}
+
+TEST(GuideSampling, SpaceSplitsWhereContributionsGatherAndTheDeviceFollows)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    GuideOptions o = options();
+    o.spatialSplitConnections = 4096.0;
+    FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);  // 8^3 voxels of 2 m from (-8, -8, -8)
+    ASSERT_EQ(g.slotCount(), 6u * 512u);
+    // The voxel [0, 2)^3 is voxel 4 + 8 (4 + 8 4) = 292; its +y side (2) is slot 6 292 + 2.
+    const std::uint32_t voxel = 292, slot = 6 * voxel + 2;
+    const std::vector<cl_float4> up = {{{0, 1, 0, 0}}, {{0, 1, 0, 0}}, {{0, 1, 0, 0}}, {{0, 1, 0, 0}}};
+    const std::vector<cl_float4> x = {{{0.5f, 0.2f, 0.3f, 0}}, {{1.5f, 0.2f, 0.3f, 0}}, {{1.5f, 1.7f, 0.3f, 0}},
+                                      {{1.5f, 1.7f, 1.9f, 0}}};
+    for (std::uint32_t s : slotsOf(*ctx, g, x, up))
+        ASSERT_EQ(s, slot) << "one voxel, one slot, before any split";
+    // Two passes of 5,000 contributions in one slot (spread evenly: no direction splits):
+    // the voxel halves along x, then (contributions in the upper-x half only) that half along y.
+    std::vector<double> r(64, 1.0);
+    writeSlot(*ctx, g, slot, r, 5000 / 64 + 1);
+    g.learn();
+    EXPECT_EQ(g.slotCount(), 6u * 513u);
+    EXPECT_EQ(g.report()["spatial_splits_last_pass"], 1u);
+    std::vector<std::uint32_t> s = slotsOf(*ctx, g, x, up);
+    EXPECT_EQ(s[0], slot) << "the lower half along x keeps the slot";
+    EXPECT_EQ(s[1], 6u * 512u + 2u) << "the upper half gets the new spatial leaf's";
+    EXPECT_EQ(s[2], s[1]);
+    EXPECT_EQ(s[3], s[1]);
+    writeSlot(*ctx, g, 6u * 512u + 2u, r, 5000 / 64 + 1);  // the upper-x half, now
+    g.learn();
+    s = slotsOf(*ctx, g, x, up);
+    EXPECT_EQ(s[0], slot);
+    EXPECT_EQ(s[1], 6u * 512u + 2u) << "y < 1 within the upper-x half";
+    EXPECT_EQ(s[2], 6u * 513u + 2u) << "y >= 1: the newest leaf";
+    EXPECT_EQ(s[3], s[2]);
+    // Both halves of a split start from the parent's tree: the same table.
+    const auto a = g.leaves(6u * 512u + 2u), b = g.leaves(6u * 513u + 2u);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i)
+        EXPECT_EQ(a[i].probability, b[i].probability);
+    // A checkpoint carries the spatial trees: the loaded guide finds the same slots.
+    StateWriter w;
+    g.save(w);
+    FirstBounceGuide h(*ctx, o, glm::dvec3(0.0), 8.0);
+    StateReader rd(w.bytes(), "test state");
+    h.load(rd);
+    rd.end();
+    EXPECT_EQ(h.slotCount(), g.slotCount());
+    EXPECT_EQ(slotsOf(*ctx, h, x, up), s);
+    EXPECT_EQ(h.report()["checksum"], g.report()["checksum"]);
+}
+
+TEST(GuideSampling, StateThatDoesNotDescribeTreesIsAnErrorNamingTheField)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    GuideOptions o = options();
+    o.voxelsAcross = 1;  // 8 voxels
+    FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
+    const auto attempt = [&](const std::vector<std::uint64_t>& space, const std::vector<std::uint64_t>& slots,
+                             const std::vector<std::uint64_t>& shape, const std::vector<double>& leaves) {
+        StateWriter w;
+        w.u64s("guide.space", space);
+        w.u64s("guide.slots", slots);
+        w.u64s("guide.shape", shape);
+        w.f64s("guide.leaves", leaves);
+        w.u64s("guide.splits", {0, 0, 0});
+        StateReader r(w.bytes(), "bad.ckpt");
+        try {
+            g.load(r);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    std::vector<std::uint64_t> good;
+    for (std::uint64_t v = 0; v < 8; ++v)
+        good.insert(good.end(), {0, v});
+    EXPECT_EQ(attempt(good, {}, {}, {}), "") << "the initial lattice loads";
+    std::vector<std::uint64_t> twice = good;
+    twice[3] = 0;  // voxel 1 claims spatial leaf 0 again
+    EXPECT_NE(attempt(twice, {}, {}, {}).find("guide.space"), std::string::npos);
+    std::vector<std::uint64_t> flag = good;
+    flag[0] = 2;
+    EXPECT_NE(attempt(flag, {}, {}, {}).find("guide.space"), std::string::npos);
+    EXPECT_NE(attempt({0, 0}, {}, {}, {}).find("guide.space"), std::string::npos) << "seven voxels missing";
+    std::vector<std::uint64_t> deep;  // voxel 0: a chain of nodes deeper than 9 halvings
+    for (int k = 0; k < 12; ++k)
+        deep.push_back(1);
+    EXPECT_NE(attempt(deep, {}, {}, {}).find("guide.space"), std::string::npos);
+    EXPECT_NE(attempt(good, {48}, {}, {}).find("guide.slots"), std::string::npos) << "slot 48 of 48";
+    EXPECT_NE(attempt(good, {3}, {1, 1, 1, 1}, {}).find("guide.shape"), std::string::npos) << "a shape cut short";
+    std::vector<std::uint64_t> leafy(4, 0);
+    EXPECT_NE(attempt(good, {3}, leafy, {1.0, 1.0}).find("guide.leaves"), std::string::npos) << "3 leaves missing";
+    EXPECT_NE(attempt(good, {3}, leafy, {1.0, -1.0, 0, 0, 0, 0, 0, 0}).find("guide.leaves"), std::string::npos);
+    // The guide is still whole after the failures: the last good state loads.
+    EXPECT_EQ(attempt(good, {3}, leafy, {1.0, 1.0, 0, 0, 0, 0, 0, 0}), "");
+    EXPECT_EQ(g.leaves(3).size(), 4u);
+}
+
 TEST(GuideSampling, VerticesOfOneVoxelAndSideShareASlot)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
-    FirstBounceGuide g(*ctx, options(), glm::dvec3(0.0), 8.0);  // voxels of 0.25 m from (-8, -8, -8)
-    const std::vector<cl_float4> x = {{{0.01f, 0.02f, 0.03f, 0}}, {{0.24f, 0.2f, 0.1f, 0}}, {{0.1f, 0.1f, 0.1f, 0}},
+    FirstBounceGuide g(*ctx, options(), glm::dvec3(0.0), 8.0);  // voxels of 2 m from (-8, -8, -8)
+    const std::vector<cl_float4> x = {{{0.01f, 0.02f, 0.03f, 0}}, {{1.24f, 1.2f, 0.1f, 0}}, {{0.1f, 0.1f, 0.1f, 0}},
                                       {{1e30f, -1e30f, 3.0f, 0}}};
     const std::vector<cl_float4> n = {{{0, 1, 0, 0}}, {{0.3f, 0.9f, 0.1f, 0}}, {{0, -1, 0, 0}}, {{1, 0, 0, 0}}};
-    const auto count = static_cast<std::uint32_t>(x.size());
-    cl::Buffer xb = ctx->buffer(CL_MEM_READ_ONLY, x.size() * 16, "points", const_cast<cl_float4*>(x.data()));
-    cl::Buffer nb = ctx->buffer(CL_MEM_READ_ONLY, n.size() * 16, "normals", const_cast<cl_float4*>(n.data()));
-    cl::Buffer sb = ctx->buffer(CL_MEM_WRITE_ONLY, x.size() * 4, "slots");
-    cl::Kernel k(ctx->program("test_guide_probes.cl"), "guide_slot_probe");
-    ocl::setKernelArgs(k, g.params(), xb, nb, count, sb);
-    ocl::launch(*ctx, k, "guide_slot_probe", count);
-    std::vector<std::uint32_t> slot(x.size());
-    ctx->queue().enqueueReadBuffer(sb, CL_TRUE, 0, slot.size() * 4, slot.data());
+    const std::vector<std::uint32_t> slot = slotsOf(*ctx, g, x, n);
     EXPECT_EQ(slot[0], slot[1]) << "one voxel, both facing +y mostly";
+    EXPECT_EQ(slot[2], slot[0] + 1) << "the same voxel facing -y";
+    // Far outside: the nearest voxel, (7, 0, 5), facing +x.
+    EXPECT_EQ(slot[3], 6u * (7u + 8u * (0u + 8u * 5u)) + 0u);
     for (std::uint32_t s : slot)
-        EXPECT_LT(s, kSlots);
+        EXPECT_LT(s, g.slotCount());
 }
 
 }  // namespace

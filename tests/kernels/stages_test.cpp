@@ -76,7 +76,7 @@ struct Stages {
         std::vector<std::uint64_t> statsZero(parts * FEN_CELL_STATS_WORDS, 0);
         cl::Buffer stats = ctx.buffer(CL_MEM_READ_WRITE, statsZero.size() * 8, "cell stats", statsZero.data());
         cl::Buffer noScale = ctx.buffer(CL_MEM_READ_ONLY, 4, "no pixel scale");
-        const FirstBounceGuide noGuide(ctx, GuideOptions{}, glm::dvec3(0.0), 1.0);  // off: the cosine
+        const FirstBounceGuide noGuide(ctx, GuideOptions::off(), glm::dvec3(0.0), 1.0);  // off: the cosine
         const DeviceSensors noSensors(ctx);
         const auto defs = ds.defines();
         auto connectDefs = defs;
