@@ -11,6 +11,10 @@ kernel void guide_sample_probe(global const GuideParams* guide_params, global co
     if (i >= n)
         return;
     const Guide g = {guide_params, guide_tables};
+    if (!(guide_record_of(&g, slot).w & FEN_GUIDE_LEARNED)) { /* only a learned slot has columns */
+        out[i] = (float4)(0.0f);
+        return;
+    }
     uint key;
     float d;
     const float2 sq = guide_sample(&g, guide_record_of(&g, slot), rng_bits(seed, 0u, i, 0u, 0u, FEN_RNG_GUIDE),

@@ -57,8 +57,8 @@ void validateGuideOptions(const GuideOptions& o)
     if (!(o.share > 0.0 && o.share <= 1.0))
         throw Error(cat("--adaptive-guide-share ", o.share, ": must be in (0, 1] (with 0 a direction the "
                         "guide has not seen light from could never be drawn: bias)"));
-    if (o.voxelsAcross < 1 || o.voxelsAcross > 64)
-        throw Error(cat("--adaptive-guide-voxels ", o.voxelsAcross, ": must be in 1..64"));
+    if (o.voxelsAcross < 1 || o.voxelsAcross > 16)
+        throw Error(cat("--adaptive-guide-voxels ", o.voxelsAcross, ": must be in 1..16"));
     if (!(o.spatialSplitConnections >= 1.0))
         throw Error(cat("--adaptive-guide-space-split ", o.spatialSplitConnections, ": must be at least 1 contribution"));
     if (o.maxSpatialDepth < 0 || o.maxSpatialDepth > 30)
@@ -78,9 +78,9 @@ void validateGuideOptions(const GuideOptions& o)
     const double cells = latticeCells(o.voxelsAcross), slots = FEN_GUIDE_SIDES * cells * cells * cells;
     const double initialMiB =
         (slots * (16.0 + 16.0 * kInitialNodes + kBytesPerLeaf * kInitialLeaves) + 4.0 * cells * cells * cells) / kMiB;
-    if (!(o.memoryMiB >= 2.0 * initialMiB && o.memoryMiB <= 65536.0))
+    if (!(o.memoryMiB >= 2.0 * initialMiB && o.memoryMiB <= 16384.0))
         throw Error(cat("--adaptive-guide-memory ", o.memoryMiB, ": must be in ", std::ceil(2.0 * initialMiB),
-                        "..65536 MiB (twice what the initial trees of ", o.voxelsAcross,
+                        "..16384 MiB (at least twice what the initial trees of ", o.voxelsAcross,
                         " voxels across the radius take)"));
 }
 
@@ -174,9 +174,10 @@ void FirstBounceGuide::clearStats()
                                    std::max<std::size_t>(leafCount_, 1) * FEN_GUIDE_STATS_WORDS * 8);
 }
 
-// Splits every leaf that held more than splitShare of its slot's m = sqrt(S A) in the pass just
-// read (`pass`: per slot and leaf, that pass's S and contributions) and saw minLeafConnections
-// contributions in it, largest shares first while the capacity lasts. Only the pass's own
+// Splits, in every slot whose table will steer, each leaf that held more than splitShare of its
+// slot's m = sqrt(S A) in the pass just read (`pass`: per slot and leaf, that pass's S and
+// contributions) and saw minLeafConnections contributions in it, largest shares first while the
+// capacity lasts. Marks those slots in promising_. Only the pass's own
 // statistics decide: the quarters a split leaf hands its children are a guess, not evidence of
 // more detail. Returns the splits made.
 std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
@@ -187,15 +188,27 @@ std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
         std::int32_t leaf;
     };
     std::vector<Candidate> cand;
+    promising_.assign(trees_.size(), 0);
     for (std::uint32_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
-        double seen = 0.0, total = 0.0;
+        double seen = 0.0, total = 0.0, learnedTotal = 0.0, cosine = 0.0, guided = 0.0;
         for (std::size_t i = 0; i < t.leaves.size(); ++i) {
             seen += t.leaves[i].connections;
             total += std::sqrt(pass[s][i].sumSq * t.leaves[i].area());
+            learnedTotal += std::sqrt(t.leaves[i].sumSq * t.leaves[i].area());
+            cosine += t.leaves[i].sumSq;
         }
-        if (!(seen >= opt_.minConnections && total > 0.0))
+        if (!(seen >= opt_.minConnections && total > 0.0 && learnedTotal > 0.0))
             continue;
+        // Only where the table will steer (rebuild()'s test, before the integer rounding): a
+        // finer tree where the cosine is kept would cost its descents and buy nothing.
+        for (const Leaf& l : t.leaves) {
+            const double p = (1.0 - opt_.share) * std::sqrt(l.sumSq * l.area()) / learnedTotal + opt_.share * l.area();
+            guided += l.sumSq * l.area() / p;
+        }
+        if (!(cosine >= opt_.minGain * guided))
+            continue;
+        promising_[s] = 1;
         for (std::size_t i = 0; i < t.leaves.size(); ++i) {
             const Leaf& l = t.leaves[i];
             const double share = std::sqrt(pass[s][i].sumSq * l.area()) / total;
@@ -304,50 +317,73 @@ void FirstBounceGuide::rebuild()
             t.leaves[b].density = static_cast<float>(cdf.probability(b) / t.leaves[b].area());
     }
 
+    // The sections of fen_guide.h, each as long as it is used; upload() puts them at their offsets.
     deviceParams_.slots = static_cast<std::uint32_t>(trees_.size());
-    tablesHost_.assign(opt_.enabled ? deviceParams_.columns_at : deviceParams_.nodes_at, 0u);
-    std::copy(voxelWord_.begin(), voxelWord_.end(), tablesHost_.begin() + deviceParams_.voxels_at);
-    for (std::size_t n = 0; n < spatialNodes_.size(); ++n) {
-        tablesHost_[deviceParams_.spatial_at + 2 * n] = spatialNodes_[n][0];
-        tablesHost_[deviceParams_.spatial_at + 2 * n + 1] = spatialNodes_[n][1];
-    }
-    std::uint32_t nodeAt = 0, leafAt = 0, columnAt = 0;
+    records_.assign(4 * trees_.size(), 0u);
+    spatialWords_.clear();
+    for (const auto& n : spatialNodes_)
+        spatialWords_.insert(spatialWords_.end(), {n[0], n[1]});
+    nodeWords_.clear();
+    leafWords_.clear();
+    columnWords_.clear();
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
-        std::uint32_t* rec = tablesHost_.data() + 4 * s;
-        rec[0] = nodeAt;
-        rec[1] = leafAt;
-        rec[2] = columnAt;
-        rec[3] = (t.learned ? FEN_GUIDE_LEARNED | t.aliasShift : 0u) |
-                 (isInitial(t) ? FEN_GUIDE_INITIAL : 0u);
-        for (const auto& n : t.nodes) {
-            std::uint32_t* out = tablesHost_.data() + deviceParams_.nodes_at + 4 * std::size_t{nodeAt++};
+        std::uint32_t* rec = records_.data() + 4 * s;
+        rec[0] = static_cast<std::uint32_t>(nodeWords_.size() / 4);
+        rec[1] = static_cast<std::uint32_t>(leafWords_.size() / 2);
+        rec[2] = static_cast<std::uint32_t>(columnWords_.size() / 2);
+        rec[3] = (t.learned ? FEN_GUIDE_LEARNED | t.aliasShift : 0u) | (isInitial(t) ? FEN_GUIDE_INITIAL : 0u);
+        for (const auto& n : t.nodes)
             for (int q = 0; q < 4; ++q)
-                out[q] = n[q] >= 0 ? rec[0] + static_cast<std::uint32_t>(n[q])
-                                   : FEN_GUIDE_LEAF | (rec[1] + static_cast<std::uint32_t>(~n[q]));
-        }
-        for (const Leaf& l : t.leaves) {
-            std::uint32_t* out = tablesHost_.data() + deviceParams_.leaves_at + 2 * std::size_t{leafAt++};
-            out[0] = floatBits(l.density);
-            out[1] = l.x0 | (l.y0 << 14) | (l.depth << 28);
-        }
-        if (t.learned) {
-            const std::size_t at = deviceParams_.columns_at + 2 * std::size_t{columnAt};
-            if (at + t.alias.size() > tablesHost_.size())
-                tablesHost_.resize(at + t.alias.size());
-            std::copy(t.alias.begin(), t.alias.end(), tablesHost_.begin() + static_cast<std::ptrdiff_t>(at));
-            columnAt += static_cast<std::uint32_t>(t.alias.size() / 2);
-        }
+                nodeWords_.push_back(n[q] >= 0 ? rec[0] + static_cast<std::uint32_t>(n[q])
+                                               : FEN_GUIDE_LEAF | (rec[1] + static_cast<std::uint32_t>(~n[q])));
+        for (const Leaf& l : t.leaves)
+            leafWords_.insert(leafWords_.end(), {floatBits(l.density), l.x0 | (l.y0 << 14) | (l.depth << 28)});
+        if (t.learned)
+            columnWords_.insert(columnWords_.end(), t.alias.begin(), t.alias.end());
     }
-    if (nodeAt > nodeCapacity_ || leafAt > leafCapacity_ || columnAt > columnCapacity_ ||
-        trees_.size() > slotCapacity_ || spatialNodes_.size() > spatialCapacity_)
+    if (nodeWords_.size() > 4 * nodeCapacity_ || leafWords_.size() > 2 * leafCapacity_ ||
+        columnWords_.size() > 2 * columnCapacity_ || trees_.size() > slotCapacity_ ||
+        spatialNodes_.size() > spatialCapacity_)
         throw Error("guide tables: beyond the capacity they were sized for");  // refine() keeps within
 }
 
 void FirstBounceGuide::upload()
 {
-    ctx_.queue().enqueueWriteBuffer(params_, CL_TRUE, 0, sizeof deviceParams_, &deviceParams_);
-    ctx_.queue().enqueueWriteBuffer(tables_, CL_TRUE, 0, tablesHost_.size() * 4, tablesHost_.data());
+    auto& q = ctx_.queue();
+    q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof deviceParams_, &deviceParams_);
+    const auto section = [&](std::uint32_t at, const std::vector<std::uint32_t>& words) {
+        if (!words.empty())
+            q.enqueueWriteBuffer(tables_, CL_FALSE, std::size_t{at} * 4, words.size() * 4, words.data());
+    };
+    section(0, records_);
+    section(deviceParams_.voxels_at, voxelWord_);
+    section(deviceParams_.spatial_at, spatialWords_);
+    section(deviceParams_.nodes_at, nodeWords_);
+    section(deviceParams_.leaves_at, leafWords_);
+    section(deviceParams_.columns_at, columnWords_);
+    q.finish();
+}
+
+// The spatial trees, voxel by voxel, depth first: 1 a node (its lower half, then its upper), or 0
+// and the spatial leaf's index. Independent of how the nodes are numbered.
+std::vector<std::uint64_t> FirstBounceGuide::spaceShape() const
+{
+    std::vector<std::uint64_t> space;
+    std::function<void(std::uint32_t)> walk = [&](std::uint32_t word) {
+        if (word & FEN_GUIDE_LEAF) {
+            space.push_back(0);
+            space.push_back(word & ~FEN_GUIDE_LEAF);
+            return;
+        }
+        space.push_back(1);
+        walk(spatialNodes_[word][0]);
+        walk(spatialNodes_[word][1]);
+    };
+    if (opt_.enabled)
+        for (std::uint32_t word : voxelWord_)
+            walk(word);
+    return space;
 }
 
 std::size_t FirstBounceGuide::nodeCount() const
@@ -358,9 +394,9 @@ std::size_t FirstBounceGuide::nodeCount() const
     return n;
 }
 
-// Halves every spatial leaf whose slots gathered spatialSplitConnections contributions in the pass
-// (`pass`, per slot as it was read; the slots after it are none), most first while the capacity
-// lasts. Each half starts from its parent's trees with half their totals: the parent's learning is
+// Halves every spatial leaf with a slot whose table will steer (promising_) and whose slots
+// gathered spatialSplitConnections contributions in the pass (per slot as it was read), most first
+// while the capacity lasts. Each half starts from its parent's trees with half their totals: the parent's learning is
 // the best guess for both until the next pass tells them apart. Returns the splits made.
 std::size_t FirstBounceGuide::refineSpace(const std::vector<double>& passConnections)
 {
@@ -373,13 +409,18 @@ std::size_t FirstBounceGuide::refineSpace(const std::vector<double>& passConnect
         double c = 0.0;
         for (std::uint32_t k = 0; k < FEN_GUIDE_SIDES; ++k)
             c += passConnections[FEN_GUIDE_SIDES * l + k];
-        if (c >= opt_.spatialSplitConnections && static_cast<int>(spatialLeaves_[l].depth) < opt_.maxSpatialDepth)
+        bool steered = false;  // only where a table steers: elsewhere the split buys nothing
+        for (std::uint32_t k = 0; k < FEN_GUIDE_SIDES; ++k)
+            steered = steered || promising_[FEN_GUIDE_SIDES * l + k];
+        if (steered && c >= opt_.spatialSplitConnections &&
+            static_cast<int>(spatialLeaves_[l].depth) < opt_.maxSpatialDepth)
             cand.push_back({c, l});
     }
     std::sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) {
         return a.connections != b.connections ? a.connections > b.connections : a.leaf < b.leaf;
     });
     std::size_t made = 0, nodes = nodeCount();
+    deferredSpatialSplits_ = 0;
     for (const Candidate& c : cand) {
         std::size_t leaves = 0, treeNodes = 0;
         for (std::uint32_t k = 0; k < FEN_GUIDE_SIDES; ++k) {
@@ -388,7 +429,7 @@ std::size_t FirstBounceGuide::refineSpace(const std::vector<double>& passConnect
         }
         if (leafCount_ + leaves > leafCapacity_ || nodes + treeNodes > nodeCapacity_ ||
             trees_.size() + FEN_GUIDE_SIDES > slotCapacity_ || spatialNodes_.size() + 1 > spatialCapacity_) {
-            deferredSplits_ += 1;
+            ++deferredSpatialSplits_;
             continue;
         }
         const auto node = static_cast<std::uint32_t>(spatialNodes_.size());
@@ -460,7 +501,7 @@ void FirstBounceGuide::learn()
 std::vector<FirstBounceGuide::LeafView> FirstBounceGuide::leaves(std::uint32_t slot) const
 {
     const Tree& t = trees_.at(slot);
-    const std::uint32_t first = tablesHost_.at(4 * std::size_t{slot} + 1);
+    const std::uint32_t first = records_.at(4 * std::size_t{slot} + 1);
     const double unit = std::ldexp(1.0, -FEN_GUIDE_MAX_DEPTH);
     std::vector<LeafView> v;
     for (std::size_t b = 0; b < t.leaves.size(); ++b) {
@@ -498,32 +539,18 @@ void FirstBounceGuide::save(StateWriter& w) const
             leaves.push_back(l.connections);
         }
     }
-    // The spatial trees, voxel by voxel, depth first: 1 a node (its lower half, then its upper), or
-    // 0 and the spatial leaf's index.
-    std::vector<std::uint64_t> space;
-    std::function<void(std::uint32_t)> walk = [&](std::uint32_t word) {
-        if (word & FEN_GUIDE_LEAF) {
-            space.push_back(0);
-            space.push_back(word & ~FEN_GUIDE_LEAF);
-            return;
-        }
-        space.push_back(1);
-        walk(spatialNodes_[word][0]);
-        walk(spatialNodes_[word][1]);
-    };
-    for (std::uint32_t word : voxelWord_)
-        walk(word);
-    w.u64s("guide.space", space);
+    w.u64s("guide.space", spaceShape());
     w.u64s("guide.slots", slots);
     w.u64s("guide.shape", shape);
     w.f64s("guide.leaves", leaves);
-    w.u64s("guide.splits", {lastSplits_, deferredSplits_, lastSpatialSplits_});
+    w.u64s("guide.splits", {lastSplits_, deferredSplits_, lastSpatialSplits_, deferredSpatialSplits_});
 }
 
 void FirstBounceGuide::load(StateReader& r)
 {
     // The spatial trees first: they say how many slots there are.
-    const std::vector<std::uint64_t> space = r.u64s("guide.space", 2 * spatialCapacity_ + 4 * voxelWord_.size());
+    // Written: a word per spatial node, two per spatial leaf; nodes < leaves <= spatialCapacity_.
+    const std::vector<std::uint64_t> space = r.u64s("guide.space", 3 * spatialCapacity_ + 2 * voxelWord_.size());
     std::vector<std::uint32_t> voxelWord(voxelWord_.size());
     std::vector<std::array<std::uint32_t, 2>> spatialNodes;
     std::vector<SpatialLeaf> spatialLeaves;
@@ -565,9 +592,9 @@ void FirstBounceGuide::load(StateReader& r)
     const std::vector<std::uint64_t> slots = r.u64s("guide.slots", FEN_GUIDE_SIDES * seenLeaf.size());
     const std::vector<std::uint64_t> shape = r.u64s("guide.shape", 4 * nodeCapacity_);
     const std::vector<double> leaves = r.f64s("guide.leaves", 2 * leafCapacity_);
-    const std::vector<std::uint64_t> splits = r.u64s("guide.splits", 3);
-    if (splits.size() != 3)
-        r.fail("guide.splits", "not (last, deferred, spatial)");
+    const std::vector<std::uint64_t> splits = r.u64s("guide.splits", 4);
+    if (splits.size() != 4)
+        r.fail("guide.splits", "not (last, deferred, spatial, spatial deferred)");
     std::vector<Tree> trees(FEN_GUIDE_SIDES * seenLeaf.size(), initialTree());
     std::size_t at = 0, leafAt = 0, total = 0;
     for (std::size_t k = 0; k < slots.size(); ++k) {
@@ -625,6 +652,7 @@ void FirstBounceGuide::load(StateReader& r)
     lastSplits_ = splits[0];
     deferredSplits_ = splits[1];
     lastSpatialSplits_ = splits[2];
+    deferredSpatialSplits_ = splits[3];
     rebuild();
     upload();
     clearStats();
@@ -634,10 +662,12 @@ nlohmann::json FirstBounceGuide::report() const
 {
     if (!opt_.enabled)
         return {{"enabled", false}};
-    // The checksum covers every tree's shape and totals: equal checksums, equal guides (the
+    // The checksum covers the spatial trees' shape and every direction tree's shape and totals: equal checksums, equal guides (the
     // determinism tests compare them).
     double connections = 0.0;
     Fnv checksum;
+    for (std::uint64_t v : spaceShape())
+        checksum.value(v);
     for (const Tree& t : trees_) {
         for (const Leaf& l : t.leaves) {
             connections += l.connections;
@@ -658,6 +688,7 @@ nlohmann::json FirstBounceGuide::report() const
             {"spatial_leaves", spatialLeaves_.size()},
             {"max_spatial_depth", maxSpatial},
             {"spatial_splits_last_pass", lastSpatialSplits_},
+            {"spatial_splits_deferred", deferredSpatialSplits_},
             {"share", opt_.share},
             {"min_connections", opt_.minConnections},
             {"min_gain", opt_.minGain},

@@ -16,8 +16,8 @@
 // mixture of the cosine, which draws leaf b with probability A(b), and the learned density, with
 // weight `share` on the cosine: share > 0 keeps every leaf drawable, the weights finite and the
 // image unbiased.
-// The trees start at 8 x 8 leaves and are refined on every pass, one level at a time: a leaf that
-// held more than splitShare of its slot's m in the pass just run, with at least
+// The trees start at 8 x 8 leaves and are refined on every pass, one level at a time, in the slots
+// whose tables steer (below): a leaf that held more than splitShare of its slot's m in the pass just run, with at least
 // minLeafConnections contributions in it, becomes four, each inheriting a quarter of its totals, down to
 // FEN_GUIDE_MAX_DEPTH -- so the resolution follows the learned density, as in practical path
 // guiding's directional quadtrees, and a window of a few thousandths of a steradian seen from far
@@ -146,6 +146,7 @@ private:
     std::size_t refine(const std::vector<std::vector<Leaf>>& pass);
     std::size_t refineSpace(const std::vector<double>& passConnections);
     std::size_t nodeCount() const;
+    std::vector<std::uint64_t> spaceShape() const;
     void rebuild();
     void upload();
     ocl::Context& ctx_;
@@ -157,10 +158,12 @@ private:
     std::vector<std::uint32_t> voxelWord_;         // per voxel: FEN_GUIDE_LEAF | spatial leaf, or a node
     std::vector<std::array<std::uint32_t, 2>> spatialNodes_;
     std::vector<SpatialLeaf> spatialLeaves_;
-    std::size_t slotCapacity_ = 0, spatialCapacity_ = 0, lastSpatialSplits_ = 0;
+    std::size_t slotCapacity_ = 0, spatialCapacity_ = 0, lastSpatialSplits_ = 0, deferredSpatialSplits_ = 0;
+    std::vector<char> promising_;                  // per slot, after refine(): its table will steer
     std::size_t leafCapacity_ = 0, nodeCapacity_ = 0, columnCapacity_ = 0;
     std::size_t leafCount_ = 0, deferredSplits_ = 0, lastSplits_ = 0;
-    std::vector<std::uint32_t> tablesHost_;  // slot records, nodes, leaves, columns (fen_guide.h)
+    // The tables' sections as uploaded (fen_guide.h), each as long as it is used.
+    std::vector<std::uint32_t> records_, spatialWords_, nodeWords_, leafWords_, columnWords_;
     std::uint32_t learnedSlots_ = 0, candidateSlots_ = 0, maxDepthSeen_ = 0;
     double learnSeconds_ = 0.0, lastLearnSeconds_ = 0.0;
     cl::Buffer params_, tables_, stats_;

@@ -210,18 +210,19 @@ TEST(GuideSampling, TheMemoryCapHoldsAndTheLargestSharesSplitFirst)
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     GuideOptions o = options();
     o.voxelsAcross = 1;  // a 2 x 2 x 2 lattice: 48 slots of 64 leaves to start with
-    o.splitShare = 0.001;
+    o.splitShare = 4e-6;
     o.memoryMiB = 0.36;  // room for about 7,000 leaves
     FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
     const std::size_t capacity = g.leafCapacity(), slots = g.slotCount();
     ASSERT_EQ(slots, 48u);
     ASSERT_LT(capacity, slots * 64u + slots * 62u * 3u);
-    // Every leaf but two of every slot asks to split: within a slot leaf b weighs (1 + b), so
-    // shares run from 1/2080 to 64/2080, and leaves 2..63 pass 0.001. The largest go first.
+    // Every leaf but two of every slot asks to split: within a slot leaf b weighs (1 + b)^3, a
+    // table that cuts the second moment 2.05x (so it steers, and only such slots refine), shares
+    // from 2.3e-7 to 0.061, leaves 2..63 above 4e-6. The largest go first.
     for (std::uint32_t s = 0; s < slots; ++s) {
         std::vector<double> r(64);
         for (int b = 0; b < 64; ++b)
-            r[b] = 1.0 + b;
+            r[b] = 1000.0 * std::pow((1.0 + b) / 64.0, 3.0);
         writeSlot(*ctx, g, s, r, 100);
     }
     g.learn();
@@ -231,7 +232,7 @@ TEST(GuideSampling, TheMemoryCapHoldsAndTheLargestSharesSplitFirst)
     EXPECT_GT(report["splits_deferred"].get<std::size_t>(), 0u);
     EXPECT_EQ(report["spatial_splits_last_pass"], 0u) << "6,400 contributions per voxel, but no room";
     // In every slot the leaves split are the heaviest: leaf b split implies leaf b + 1 split, the
-    // heaviest (63) split, the lightest candidate (2: share 3/2080 > 0.001) waits.
+    // heaviest (63) split, the lightest candidate (2: share 6.2e-6) waits.
     const FirstBounceGuide fresh(*ctx, o, glm::dvec3(0.0), 8.0);
     for (std::uint32_t s = 0; s < slots; ++s) {
         const auto now = g.leaves(s);
@@ -278,19 +279,26 @@ TEST(GuideSampling, SpaceSplitsWhereContributionsGatherAndTheDeviceFollows)
                                       {{1.5f, 1.7f, 1.9f, 0}}};
     for (std::uint32_t s : slotsOf(*ctx, g, x, up))
         ASSERT_EQ(s, slot) << "one voxel, one slot, before any split";
-    // Two passes of 5,000 contributions in one slot (spread evenly: no direction splits):
-    // the voxel halves along x, then (contributions in the upper-x half only) that half along y.
-    std::vector<double> r(64, 1.0);
-    writeSlot(*ctx, g, slot, r, 5000 / 64 + 1);
+    // Two passes of 5,000 contributions in one slot, most of the light through its lowest corner
+    // leaf (a table that steers: only there does space split): the voxel halves along x, then
+    // (contributions in the upper-x half only) that half along y.
+    const auto corner = [&](std::uint32_t sl) {
+        std::vector<double> r;
+        for (const auto& l : g.leaves(sl))
+            r.push_back(l.x0 == 0.0 && l.y0 == 0.0 ? 400.0 : 1.0);
+        return r;
+    };
+    writeSlot(*ctx, g, slot, corner(slot), 5000 / 64 + 1);
     g.learn();
     EXPECT_EQ(g.slotCount(), 6u * 513u);
     EXPECT_EQ(g.report()["spatial_splits_last_pass"], 1u);
+    EXPECT_TRUE(g.learned(slot));
     std::vector<std::uint32_t> s = slotsOf(*ctx, g, x, up);
     EXPECT_EQ(s[0], slot) << "the lower half along x keeps the slot";
     EXPECT_EQ(s[1], 6u * 512u + 2u) << "the upper half gets the new spatial leaf's";
     EXPECT_EQ(s[2], s[1]);
     EXPECT_EQ(s[3], s[1]);
-    writeSlot(*ctx, g, 6u * 512u + 2u, r, 5000 / 64 + 1);  // the upper-x half, now
+    writeSlot(*ctx, g, 6u * 512u + 2u, corner(6u * 512u + 2u), 5000 / 64 + 1);  // the upper-x half, now
     g.learn();
     s = slotsOf(*ctx, g, x, up);
     EXPECT_EQ(s[0], slot);
@@ -314,6 +322,38 @@ TEST(GuideSampling, SpaceSplitsWhereContributionsGatherAndTheDeviceFollows)
     EXPECT_EQ(h.report()["checksum"], g.report()["checksum"]);
 }
 
+TEST(GuideSampling, AGuideSplitToItsCapacityResumesFromItsOwnCheckpoint)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    GuideOptions o = options();
+    o.voxelsAcross = 1;  // 8 voxels
+    o.memoryMiB = 2.0;   // room for about 100 spatial leaves
+    FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
+    // Every slot steers (its light through one corner leaf) and gathers enough to split, pass
+    // after pass, until the memory stops it.
+    for (int pass = 0; pass < 6; ++pass) {
+        for (std::uint32_t slot = 0; slot < g.slotCount(); ++slot) {
+            std::vector<double> r;
+            for (const auto& l : g.leaves(slot))
+                r.push_back(l.x0 == 0.0 && l.y0 == 0.0 ? 400.0 : 1.0);
+            writeSlot(*ctx, g, slot, r, 1000);
+        }
+        g.learn();
+    }
+    const auto report = g.report();
+    EXPECT_GT(g.spatialLeaves(), 80u) << "most of the capacity used by spatial splits";
+    EXPECT_GT(report["spatial_splits_deferred"].get<std::size_t>() + report["splits_deferred"].get<std::size_t>(), 0u);
+    StateWriter w;
+    g.save(w);
+    FirstBounceGuide h(*ctx, o, glm::dvec3(0.0), 8.0);
+    StateReader rd(w.bytes(), "full.ckpt");
+    h.load(rd);
+    rd.end();
+    EXPECT_EQ(h.slotCount(), g.slotCount());
+    EXPECT_EQ(h.leafCount(), g.leafCount());
+    EXPECT_EQ(h.report()["checksum"], report["checksum"]);
+}
+
 TEST(GuideSampling, StateThatDoesNotDescribeTreesIsAnErrorNamingTheField)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
@@ -327,7 +367,7 @@ TEST(GuideSampling, StateThatDoesNotDescribeTreesIsAnErrorNamingTheField)
         w.u64s("guide.slots", slots);
         w.u64s("guide.shape", shape);
         w.f64s("guide.leaves", leaves);
-        w.u64s("guide.splits", {0, 0, 0});
+        w.u64s("guide.splits", {0, 0, 0, 0});
         StateReader r(w.bytes(), "bad.ckpt");
         try {
             g.load(r);
