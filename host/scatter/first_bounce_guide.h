@@ -5,35 +5,43 @@
 //
 // Light that must bounce off something outside before it can enter (the ground in front of a
 // window, a sunlit wall across a courtyard) is what emission alone cannot steer: the emitted ray
-// only decides where the bounce happens, the bounce decides whether the light gets in. The guide
-// learns, per slot (a spatial leaf of the scene and the side a surface faces), which leaves of a quadtree
-// over the cosine-hemisphere's square send a unit of weight to the camera, and the device draws
-// the first bounce from that: leaf b has probability P(b) = (1 - share) m(b) / sum m + share A(b),
-// density d(b) = P(b) / A(b), with A(b) its area, m(b) = sqrt(S(b) A(b)) and S(b) the leaf's
-// learned integral of the squared delivery -- the piecewise-constant density that minimises the
-// second moment sum S(b) / d(b) of what a unit of weight delivers (for a delivery that is the same
-// for every path through a leaf, the first moment: the zero-variance density). It is the one-sample
-// mixture of the cosine, which draws leaf b with probability A(b), and the learned density, with
-// weight `share` on the cosine: share > 0 keeps every leaf drawable, the weights finite and the
-// image unbiased.
-// The trees start at 8 x 8 leaves and are refined on every pass, one level at a time, in the slots
-// whose tables steer (below): a leaf that held more than splitShare of its slot's m in the pass just run, with at least
-// minLeafConnections contributions in it, becomes four, each inheriting a quarter of its totals, down to
-// FEN_GUIDE_MAX_DEPTH -- so the resolution follows the learned density, as in practical path
-// guiding's directional quadtrees, and a window of a few thousandths of a steradian seen from far
-// away gets leaves of its own. The leaves of all slots together are capped by the memory the
-// buffers are sized for at construction (memoryMiB), which holds at any image size; when the cap is
-// reached, the splits with the largest shares are made first and the rest wait (reported). A slot is guided only when its
-// statistics predict that the table cuts that second moment at least minGain times against the
-// cosine's (sum S / sum S/d): where light leaves a surface towards the camera about as much in
-// every direction (a sunlit floor in view), guiding buys nothing and its noisy tables cost.
+// only decides where the bounce happens, the bounce decides whether the light gets in.
+//
+// Directions. The guide learns, per slot, which leaves of a quadtree over the cosine hemisphere's
+// square send a unit of weight to the camera, and the device draws the first bounce from that:
+// leaf b has probability P(b) = (1 - share) m(b) / sum m + share A(b), density d(b) = P(b) / A(b),
+// with A(b) its area, m(b) = sqrt(S(b) A(b)) and S(b) the leaf's learned integral of the squared
+// delivery -- the piecewise-constant density that minimises the second moment sum S(b) / d(b) of
+// what a unit of weight delivers (for a delivery that is the same for every path through a leaf,
+// the first moment: the zero-variance density). It is the one-sample mixture of the cosine, which
+// draws leaf b with probability A(b), and the learned density, with weight `share` on the cosine:
+// share > 0 keeps every leaf drawable, the weights finite and the image unbiased. A slot is
+// guided only when its statistics predict that the table cuts that second moment at least
+// minGain times against the cosine's (sum S / sum S/d): where light leaves a surface towards the
+// camera about as much in every direction (a sunlit floor in view), guiding buys nothing and its
+// noisy tables cost.
+//
+// Resolution that follows the light, in the slots whose tables steer. The trees start at 8 x 8
+// leaves; after each pass a leaf that held more than splitShare of its slot's m in that pass, with
+// at least minLeafConnections contributions there, becomes four, each inheriting a quarter of its
+// totals, down to maxDepth -- as practical path guiding's directional quadtrees, so that a window of
+// a few thousandths of a steradian seen from far away gets leaves of its own. The slots are six per
+// spatial leaf (the side a vertex's normal faces most); the spatial leaves start as a lattice of
+// voxels over the scene's bounding cube, and one whose slots gathered spatialSplitConnections
+// contributions in a pass is halved (x, y, z in turn, down to maxSpatialDepth), both halves
+// starting from its trees with half their totals.
+//
+// Bounded memory. Everything lives in buffers sized at construction (memoryMiB), whatever the
+// image size; when a pass's splits would pass them, the largest go first and the rest wait
+// (reported).
+//
 // Learning runs on the owner's passes (the adaptive strategy's): learn() reads the pass's
 // statistics, adds them to the totals (each sample's square times the density it was drawn with,
-// so passes drawn from different tables add up), refines the trees, rebuilds every slot with at
-// least minConnections contributions, uploads the tables and clears the statistics. Deterministic: the statistics are
-// integer sums, so the tables after a pass depend only on the seed and the path counts.
-// Off (enabled = false): GuideParams.slots = 0 and small placeholder buffers; the kernels then
-// scatter exactly as without a guide.
+// so passes drawn from different tables add up), refines the trees, rebuilds every slot's table,
+// uploads the used part of each section and clears the statistics. Deterministic: the statistics
+// are integer sums and every choice is ordered, so the trees after a pass depend only on the seed
+// and the path counts. Off (enabled = false): GuideParams.slots = 0 and small placeholder buffers;
+// the kernels then scatter exactly as without a guide.
 #pragma once
 
 #include <array>

@@ -1,7 +1,7 @@
 /* guide.h — the first-bounce guide on the device (DESIGN.md §3.4; layout and statistics:
  * shared/fen_guide.h; learning: host/scatter/first_bounce_guide.h).
  *
- * At its first diffuse vertex a path finds its slot (voxel and facing side, hashed), draws a leaf b
+ * At its first diffuse vertex a path finds its slot (spatial leaf and facing side), draws a leaf b
  * of its quadtree over the square from the slot's alias table (density d(b) = P(b) / area(b) there,
  * the host's mixture of what was learned with the uniform table), a point uniformly in the leaf,
  * and scatters through it as the cosine hemisphere does; the weight is divided by d(b). The path then

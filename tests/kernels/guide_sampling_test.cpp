@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "cl/launch.h"
 #include "io/state_io.h"
@@ -117,6 +118,18 @@ void expectDescentFindsTheLeaves(ocl::Context& ctx, const FirstBounceGuide& g, s
     EXPECT_EQ(got, want);
 }
 
+// A guide with options o loaded from g's checkpoint state, as a resumed render builds it.
+std::unique_ptr<FirstBounceGuide> resumed(ocl::Context& ctx, const GuideOptions& o, const FirstBounceGuide& g)
+{
+    StateWriter w;
+    g.save(w);
+    auto h = std::make_unique<FirstBounceGuide>(ctx, o, glm::dvec3(0.0), 8.0);
+    StateReader rd(w.bytes(), "test.ckpt");
+    h->load(rd);
+    rd.end();
+    return h;
+}
+
 TEST(GuideSampling, LearnedTableIsTheDocumentedMixtureAndTheDeviceDrawsIt)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
@@ -190,13 +203,8 @@ TEST(GuideSampling, TreesRefineWhereTheDensityConcentratesAndTheDeviceFollows)
     EXPECT_EQ(report["splits_last_pass"], 1u);
 
     // The checkpoint carries the trees: a guide loaded from it draws with the same tables.
-    StateWriter w;
-    g.save(w);
-    FirstBounceGuide h(*ctx, options(), glm::dvec3(0.0), 8.0);
-    StateReader rd(w.bytes(), "test state");
-    h.load(rd);
-    rd.end();
-    const auto a = g.leaves(3), b = h.leaves(3);
+    const auto h = resumed(*ctx, options(), g);
+    const auto a = g.leaves(3), b = h->leaves(3);
     ASSERT_EQ(a.size(), b.size());
     for (std::size_t i = 0; i < a.size(); ++i) {
         EXPECT_EQ(a[i].probability, b[i].probability);
@@ -311,15 +319,10 @@ TEST(GuideSampling, SpaceSplitsWhereContributionsGatherAndTheDeviceFollows)
     for (std::size_t i = 0; i < a.size(); ++i)
         EXPECT_EQ(a[i].probability, b[i].probability);
     // A checkpoint carries the spatial trees: the loaded guide finds the same slots.
-    StateWriter w;
-    g.save(w);
-    FirstBounceGuide h(*ctx, o, glm::dvec3(0.0), 8.0);
-    StateReader rd(w.bytes(), "test state");
-    h.load(rd);
-    rd.end();
-    EXPECT_EQ(h.slotCount(), g.slotCount());
-    EXPECT_EQ(slotsOf(*ctx, h, x, up), s);
-    EXPECT_EQ(h.report()["checksum"], g.report()["checksum"]);
+    const auto h = resumed(*ctx, o, g);
+    EXPECT_EQ(h->slotCount(), g.slotCount());
+    EXPECT_EQ(slotsOf(*ctx, *h, x, up), s);
+    EXPECT_EQ(h->report()["checksum"], g.report()["checksum"]);
 }
 
 TEST(GuideSampling, AGuideSplitToItsCapacityResumesFromItsOwnCheckpoint)
@@ -343,15 +346,10 @@ TEST(GuideSampling, AGuideSplitToItsCapacityResumesFromItsOwnCheckpoint)
     const auto report = g.report();
     EXPECT_GT(g.spatialLeaves(), 80u) << "most of the capacity used by spatial splits";
     EXPECT_GT(report["spatial_splits_deferred"].get<std::size_t>() + report["splits_deferred"].get<std::size_t>(), 0u);
-    StateWriter w;
-    g.save(w);
-    FirstBounceGuide h(*ctx, o, glm::dvec3(0.0), 8.0);
-    StateReader rd(w.bytes(), "full.ckpt");
-    h.load(rd);
-    rd.end();
-    EXPECT_EQ(h.slotCount(), g.slotCount());
-    EXPECT_EQ(h.leafCount(), g.leafCount());
-    EXPECT_EQ(h.report()["checksum"], report["checksum"]);
+    const auto h = resumed(*ctx, o, g);
+    EXPECT_EQ(h->slotCount(), g.slotCount());
+    EXPECT_EQ(h->leafCount(), g.leafCount());
+    EXPECT_EQ(h->report()["checksum"], report["checksum"]);
 }
 
 TEST(GuideSampling, StateThatDoesNotDescribeTreesIsAnErrorNamingTheField)
