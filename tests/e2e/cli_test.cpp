@@ -502,6 +502,15 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
                 "--adaptive-guide-share 0");
     expectError(run("render " + good + out + " --adaptive-guide on --adaptive-guide-voxels 0"), 1,
                 "--adaptive-guide-voxels 0");
+    // ... its trees: a depth from the fixed 8 x 8 to the finest, positive split thresholds, a memory
+    // that holds the starting trees
+    expectError(run("render " + good + out + " --adaptive-guide-depth 2"), 1, "--adaptive-guide-depth 2");
+    expectError(run("render " + good + out + " --adaptive-guide-depth 13"), 1, "--adaptive-guide-depth 13");
+    expectError(run("render " + good + out + " --adaptive-guide-split 0"), 1, "--adaptive-guide-split 0");
+    expectError(run("render " + good + out + " --adaptive-guide-space-split 0"), 1,
+                "--adaptive-guide-space-split 0");
+    expectError(run("render " + good + out + " --adaptive-guide-memory 1"), 1, "--adaptive-guide-memory 1");
+    expectError(run("render " + good + out + " --adaptive-guide-voxels 17"), 1, "--adaptive-guide-voxels 17");
     // splitting: a count of branches, a positive weight unit -- never silently the default
     expectError(run("render " + good + out + " --split 0"), 1, "--split 0");
     expectError(run("render " + good + out + " --split -1"), 1, "--split -1");
