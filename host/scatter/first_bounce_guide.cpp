@@ -84,6 +84,19 @@ void validateGuideOptions(const GuideOptions& o)
                         " voxels across the radius take)"));
 }
 
+// Quadrant q (bit 0: the upper half in x, bit 1 in y) of the square of side 2^-depth at (x0, y0),
+// in 2^-FEN_GUIDE_MAX_DEPTH units: a leaf one level deeper, with no statistics.
+FirstBounceGuide::Leaf FirstBounceGuide::quadrant(std::uint32_t x0, std::uint32_t y0, std::uint32_t depth,
+                                                  std::uint32_t q)
+{
+    const std::uint32_t half = 1u << (FEN_GUIDE_MAX_DEPTH - depth - 1);
+    Leaf l;
+    l.x0 = x0 + (q & 1u) * half;
+    l.y0 = y0 + (q >> 1) * half;
+    l.depth = depth + 1;
+    return l;
+}
+
 FirstBounceGuide::Tree FirstBounceGuide::initialTree()
 {
     Tree t;
@@ -92,17 +105,12 @@ FirstBounceGuide::Tree FirstBounceGuide::initialTree()
         [&](std::uint32_t x0, std::uint32_t y0, std::uint32_t depth) {
             const auto at = static_cast<std::int32_t>(t.nodes.size());
             t.nodes.push_back({});
-            const std::uint32_t half = 1u << (FEN_GUIDE_MAX_DEPTH - depth - 1);
             for (std::uint32_t q = 0; q < 4; ++q) {
-                const std::uint32_t cx = x0 + (q & 1u) * half, cy = y0 + (q >> 1) * half;
+                const Leaf l = quadrant(x0, y0, depth, q);
                 std::int32_t c;
-                if (depth + 1 < FEN_GUIDE_INITIAL_DEPTH) {
-                    c = node(cx, cy, depth + 1);
+                if (l.depth < FEN_GUIDE_INITIAL_DEPTH) {
+                    c = node(l.x0, l.y0, l.depth);
                 } else {
-                    Leaf l;
-                    l.x0 = cx;
-                    l.y0 = cy;
-                    l.depth = depth + 1;
                     c = ~static_cast<std::int32_t>(t.leaves.size());
                     t.leaves.push_back(l);
                 }
@@ -191,22 +199,15 @@ std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
     promising_.assign(trees_.size(), 0);
     for (std::uint32_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
-        double seen = 0.0, total = 0.0, learnedTotal = 0.0, cosine = 0.0, guided = 0.0;
-        for (std::size_t i = 0; i < t.leaves.size(); ++i) {
-            seen += t.leaves[i].connections;
+        double total = 0.0;
+        for (std::size_t i = 0; i < t.leaves.size(); ++i)
             total += std::sqrt(pass[s][i].sumSq * t.leaves[i].area());
-            learnedTotal += std::sqrt(t.leaves[i].sumSq * t.leaves[i].area());
-            cosine += t.leaves[i].sumSq;
-        }
-        if (!(seen >= opt_.minConnections && total > 0.0 && learnedTotal > 0.0))
+        if (!(total > 0.0))
             continue;
         // Only where the table will steer (rebuild()'s test, before the integer rounding): a
         // finer tree where the cosine is kept would cost its descents and buy nothing.
-        for (const Leaf& l : t.leaves) {
-            const double p = (1.0 - opt_.share) * std::sqrt(l.sumSq * l.area()) / learnedTotal + opt_.share * l.area();
-            guided += l.sumSq * l.area() / p;
-        }
-        if (!(cosine >= opt_.minGain * guided))
+        const std::vector<double> p = mixture(t);
+        if (p.empty() || !steers(t, p))
             continue;
         promising_[s] = 1;
         for (std::size_t i = 0; i < t.leaves.size(); ++i) {
@@ -220,10 +221,7 @@ std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
     std::sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) {
         return a.share != b.share ? a.share > b.share : (a.slot != b.slot ? a.slot < b.slot : a.leaf < b.leaf);
     });
-    std::size_t nodes = 0;
-    for (const Tree& t : trees_)
-        nodes += t.nodes.size();
-    const std::size_t room = std::min((leafCapacity_ - leafCount_) / 3, nodeCapacity_ - nodes);
+    const std::size_t room = std::min((leafCapacity_ - leafCount_) / 3, nodeCapacity_ - nodeCount());
     const std::size_t made = std::min(room, cand.size());
     deferredSplits_ = cand.size() - made;
     std::vector<std::vector<char>> split(trees_.size());
@@ -254,14 +252,11 @@ std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
                     const Leaf& p = old.leaves[static_cast<std::size_t>(~c)];
                     made_c = static_cast<std::int32_t>(t.nodes.size());
                     t.nodes.push_back({});
-                    const std::uint32_t half = 1u << (FEN_GUIDE_MAX_DEPTH - p.depth - 1);
                     for (std::uint32_t k = 0; k < 4; ++k) {
-                        Leaf l = p;
+                        Leaf l = quadrant(p.x0, p.y0, p.depth, k);
                         l.sumSq = p.sumSq / 4.0;
                         l.connections = p.connections / 4.0;
-                        l.depth = p.depth + 1;
-                        l.x0 = p.x0 + (k & 1u) * half;
-                        l.y0 = p.y0 + (k >> 1) * half;
+                        l.density = p.density;
                         t.nodes[static_cast<std::size_t>(made_c)][k] = ~static_cast<std::int32_t>(t.leaves.size());
                         t.leaves.push_back(l);
                     }
@@ -273,7 +268,37 @@ std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
         copy(0);
         trees_[s] = std::move(t);
     }
+    leafCount_ += 3 * made;
     return made;
+}
+
+// The slot's table before the integer rounding: P(b) = (1 - share) m(b) / sum m + share A(b), with
+// m = sqrt(S A); empty while it has seen fewer than minConnections contributions or none with light.
+std::vector<double> FirstBounceGuide::mixture(const Tree& t) const
+{
+    double seen = 0.0, total = 0.0;
+    for (const Leaf& l : t.leaves) {
+        seen += l.connections;
+        total += std::sqrt(l.sumSq * l.area());
+    }
+    if (!(seen >= opt_.minConnections && total > 0.0))
+        return {};
+    std::vector<double> p;
+    for (const Leaf& l : t.leaves)
+        p.push_back((1.0 - opt_.share) * std::sqrt(l.sumSq * l.area()) / total + opt_.share * l.area());
+    return p;
+}
+
+// Whether drawing the slot's leaves with probabilities p cuts the second moment sum S / d, d = p / A,
+// at least minGain times against the cosine's sum S.
+bool FirstBounceGuide::steers(const Tree& t, const std::vector<double>& p) const
+{
+    double cosine = 0.0, guided = 0.0;
+    for (std::size_t b = 0; b < p.size(); ++b) {
+        cosine += t.leaves[b].sumSq;
+        guided += t.leaves[b].sumSq * t.leaves[b].area() / p[b];
+    }
+    return cosine >= opt_.minGain * guided;
 }
 
 // Every slot's table: learned where it has seen enough and the table promises minGain, the
@@ -282,39 +307,30 @@ void FirstBounceGuide::rebuild()
 {
     learnedSlots_ = candidateSlots_ = maxDepthSeen_ = 0;
     leafCount_ = 0;
-    std::vector<double> w;
     for (Tree& t : trees_) {
         t.learned = false;
         t.alias.clear();
-        double seen = 0.0, total = 0.0, cosine = 0.0;
         for (Leaf& l : t.leaves) {
             l.density = 1.0f;
-            seen += l.connections;
-            total += std::sqrt(l.sumSq * l.area());
-            cosine += l.sumSq;
             maxDepthSeen_ = std::max(maxDepthSeen_, l.depth);
         }
         leafCount_ += t.leaves.size();
-        if (!(seen >= opt_.minConnections && total > 0.0))
+        const std::vector<double> w = mixture(t);
+        if (w.empty())
             continue;  // the cosine: the kernels read only the tree, for the record
         ++candidateSlots_;
-        w.resize(t.leaves.size());
-        for (std::size_t b = 0; b < w.size(); ++b) {
-            const Leaf& l = t.leaves[b];
-            w[b] = (1.0 - opt_.share) * std::sqrt(l.sumSq * l.area()) / total + opt_.share * l.area();
-        }
         const IntegerCdf cdf = makeIntegerCdf(w);
-        double guided = 0.0;  // sum S / d under the new table
+        std::vector<double> realised(w.size());
         for (std::size_t b = 0; b < w.size(); ++b)
-            guided += t.leaves[b].sumSq * t.leaves[b].area() / cdf.probability(b);
-        if (!(cosine >= opt_.minGain * guided))
+            realised[b] = cdf.probability(b);
+        if (!steers(t, realised))
             continue;  // too little to gain: the cosine, no table read
         ++learnedSlots_;
         t.learned = true;
         t.aliasShift = cdf.aliasShift;
         t.alias = cdf.alias;
         for (std::size_t b = 0; b < w.size(); ++b)
-            t.leaves[b].density = static_cast<float>(cdf.probability(b) / t.leaves[b].area());
+            t.leaves[b].density = static_cast<float>(realised[b] / t.leaves[b].area());
     }
 
     // The sections of fen_guide.h, each as long as it is used; upload() puts them at their offsets.
@@ -486,10 +502,7 @@ void FirstBounceGuide::learn()
     for (std::size_t t = 0; t < pass.size(); ++t)
         for (const Leaf& l : pass[t])
             passConnections[t] += l.connections;
-    lastSplits_ = refine(pass);
-    leafCount_ = 0;
-    for (const Tree& t : trees_)
-        leafCount_ += t.leaves.size();
+    lastSplits_ = refine(pass);  // keeps leafCount_
     lastSpatialSplits_ = refineSpace(passConnections);
     rebuild();
     upload();
@@ -606,23 +619,18 @@ void FirstBounceGuide::load(StateReader& r)
                                                                                      std::uint32_t depth) {
             const auto n = t.nodes.size();
             t.nodes.push_back({});
-            const std::uint32_t half = 1u << (FEN_GUIDE_MAX_DEPTH - depth - 1);
             for (std::uint32_t q = 0; q < 4; ++q) {
                 if (at >= shape.size() || shape[at] > 1)
                     r.fail("guide.shape", "ends early or holds a value other than 0 and 1");
-                const std::uint32_t cx = x0 + (q & 1u) * half, cy = y0 + (q >> 1) * half;
+                Leaf l = quadrant(x0, y0, depth, q);
                 if (shape[at++] == 1) {
-                    if (depth + 1 >= FEN_GUIDE_MAX_DEPTH)
+                    if (l.depth >= FEN_GUIDE_MAX_DEPTH)
                         r.fail("guide.shape", "a tree deeper than the guide allows");
                     t.nodes[n][q] = static_cast<std::int32_t>(t.nodes.size());
-                    parse(cx, cy, depth + 1);
+                    parse(l.x0, l.y0, l.depth);
                 } else {
                     if (leafAt + 2 > leaves.size())
                         r.fail("guide.leaves", "fewer leaves than the trees' shapes hold");
-                    Leaf l;
-                    l.x0 = cx;
-                    l.y0 = cy;
-                    l.depth = depth + 1;
                     l.sumSq = r.finite("guide.leaves", leaves[leafAt]);
                     l.connections = r.finite("guide.leaves", leaves[leafAt + 1]);
                     if (l.sumSq < 0.0 || l.connections < 0.0)
@@ -638,11 +646,11 @@ void FirstBounceGuide::load(StateReader& r)
     }
     if (at != shape.size() || leafAt != leaves.size())
         r.fail("guide.shape", "values left over after the listed slots' trees");
-    for (const Tree& t : trees)
-        total += t.leaves.size();
     std::size_t nodes = 0;
-    for (const Tree& t : trees)
+    for (const Tree& t : trees) {
+        total += t.leaves.size();
         nodes += t.nodes.size();
+    }
     if (total > leafCapacity_ || nodes > nodeCapacity_)
         r.fail("guide.shape", "more leaves than --adaptive-guide-memory holds");
     trees_ = std::move(trees);

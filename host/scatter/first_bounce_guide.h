@@ -149,11 +149,14 @@ private:
         std::uint32_t half = 0;            // ... and which child (0 lower, 1 upper)
         std::uint32_t depth = 0;
     };
+    static Leaf quadrant(std::uint32_t x0, std::uint32_t y0, std::uint32_t depth, std::uint32_t q);
     static Tree initialTree();
     static bool isInitial(const Tree& t);  // the full tree of depth FEN_GUIDE_INITIAL_DEPTH
     std::size_t refine(const std::vector<std::vector<Leaf>>& pass);
     std::size_t refineSpace(const std::vector<double>& passConnections);
     std::size_t nodeCount() const;
+    std::vector<double> mixture(const Tree& t) const;
+    bool steers(const Tree& t, const std::vector<double>& p) const;
     std::vector<std::uint64_t> spaceShape() const;
     void rebuild();
     void upload();
