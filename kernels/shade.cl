@@ -3,7 +3,7 @@
  * Work-item i, slot i: a miss ends the path (or its branch); a surface is shaded by shade_path(),
  * which may write a camera connection for connect.cl. Writes paths[i], splits[i] while branches of
  * a split wait, and connections[i] (pixel FEN_INVALID_ID when there is none). Atomics: the alive
- * counter (per work-group), the max-depth counter. The guide's tables (lib/guide.h) are read at
+ * and vertex counters (per work-group), the max-depth counter. The guide's tables (lib/guide.h) are read at
  * first diffuse vertices when guide_params->slots > 0. Built with -DFEN_HAS_SENSORS, the segment
  * that led to the hit (or to the miss) first adds its flux to the sensor cells it crosses
  * (lib/sensor.h); without it the sensor arguments are never read.
@@ -19,7 +19,7 @@ static inline uint shade_one(uint i, global const RenderParams* params, const Gu
                              global SplitState* splits, global const SurfaceHit* hits,
                              const SurfaceMaterials* sm,
                              global const DevCamera* cam, global Connection* connections,
-                             const Sensors* sensors, volatile global ulong* counters)
+                             const Sensors* sensors, VertexTally* t, volatile global ulong* counters)
 {
     if (i >= params->pool_size)
         return 0;
@@ -40,12 +40,12 @@ static inline uint shade_one(uint i, global const RenderParams* params, const Gu
     int alive = 0;
     if (as_uint(h.normal.w) != FEN_INVALID_ID) {
         Connection c;
-        alive = shade_path(params, guide, &p, &h, sm, cam, &c, &s, counters);
+        alive = shade_path(params, guide, &p, &h, sm, cam, &c, &s, t, counters);
         if (as_uint(c.org.w) != FEN_INVALID_ID)
             connections[i] = c;
     }
     if (!alive)
-        alive = next_branch(params, guide, &p, &s, sm, cam, counters);
+        alive = next_branch(params, guide, &p, &s, sm, cam, t, counters);
     if (!alive) {
         paths[i].flags = 0;
         return 0;
@@ -69,11 +69,14 @@ kernel void shade_paths(global const RenderParams* params, global PathState* pat
                         volatile global ulong* counters)
 {
     local uint alive_in_group;
+    VertexTally tally = {0, 0};
     const Guide guide = {guide_params, guide_tables};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
     const Sensors sensors = {sensor_info, sensor_planes, sensor_cells, sensor_bucket_start, sensor_bucket_cells,
                              sensor_accum, sensor_cell_stats, sensor_steer, params->fixed_scale, params->stats_scale};
     const uint alive = shade_one(get_global_id(0), params, &guide, paths, splits, hits, &sm, cam, connections,
-                                 &sensors, counters);
+                                 &sensors, &tally, counters);
     group_count_add(counters + FEN_CTR_ALIVE, alive, &alive_in_group);
+    group_count_add(counters + FEN_CTR_DIFFUSE_VERTICES, (uint)tally.diffuse, &alive_in_group);
+    group_count_add(counters + FEN_CTR_GUIDED_VERTICES, (uint)tally.guided, &alive_in_group);
 }

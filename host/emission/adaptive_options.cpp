@@ -62,6 +62,8 @@ public:
                           "With adaptive --adaptive-guide on: split a direction leaf holding more than this share of its slot (default 0.02)");
         render.add_option("--adaptive-guide-space-split", guideSpaceSplit_,
                           "With adaptive --adaptive-guide on: halve a spatial leaf whose slots gathered this many contributions in a pass (default 4096)");
+        render.add_option("--adaptive-guide-vertices", guideVertices_,
+                          "With adaptive --adaptive-guide on: the diffuse vertices the guide draws at, first (default) or every");
         render.add_option("--adaptive-guide-memory", guideMemory_,
                           "With adaptive --adaptive-guide on: MiB of device memory for the guide's trees (default 256)");
         render.add_option("--adaptive-target", target_,
@@ -82,7 +84,8 @@ public:
         }
         const bool tuned = estimate_ || initialSkyDepth_ || maxSkyDepth_ || initialDepth_ || maxDepth_ ||
                            defensive_ || diskShare_ || split_ || firstPass_ || maxCells_ || prior_ || weights_ ||
-                           target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_;
+                           target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_ ||
+                           guideVertices_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
@@ -112,11 +115,13 @@ public:
         a.guide.splitShare = guideSplit_.value_or(a.guide.splitShare);
         a.guide.spatialSplitConnections = guideSpaceSplit_.value_or(a.guide.spatialSplitConnections);
         a.guide.memoryMiB = guideMemory_.value_or(a.guide.memoryMiB);
+        if (guideVertices_)
+            a.guide.everyVertex = choice("--adaptive-guide-vertices", *guideVertices_, "every", "first");
         validateAdaptiveOptions(a);
     }
 
 private:
-    std::optional<std::string> base_, estimate_, weights_, target_, guide_;
+    std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_;
     std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_;
     std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_;
     std::optional<std::uint64_t> firstPass_;
@@ -180,7 +185,8 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
             {"guide_depth", a.guide.maxDepth},
             {"guide_split", a.guide.splitShare},
             {"guide_space_split", a.guide.spatialSplitConnections},
-            {"guide_memory_mib", a.guide.memoryMiB}};
+            {"guide_memory_mib", a.guide.memoryMiB},
+            {"guide_every_vertex", a.guide.everyVertex}};
 }
 
 }  // namespace fen

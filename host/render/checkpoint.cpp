@@ -232,7 +232,8 @@ void writeLoopState(StateWriter& w, const LoopState& l)
     w.f64("loop.calibration_seconds", l.calibrationSeconds);
     const BatchCounts& n = l.counts;
     w.u64s("loop.counts", {n.extensionRays, n.shadowRays, n.cameraRays, n.badContributions, n.overflows,
-                           n.statsOverflows, n.maxBounceCuts, n.cameraGlassCuts});
+                           n.statsOverflows, n.maxBounceCuts, n.cameraGlassCuts, n.diffuseVertices,
+                           n.guidedVertices});
     w.f64("loop.cut_flux", n.cutFlux);
 }
 
@@ -244,12 +245,15 @@ void readLoopState(StateReader& in, const LoopRules& rules, LoopState* out)
     l.done = static_cast<int>(in.u64("loop.done", static_cast<std::uint64_t>(rules.batches)));
     l.renderSeconds = in.f64("loop.render_seconds");
     l.calibrationSeconds = in.f64("loop.calibration_seconds");
-    const std::vector<std::uint64_t> c = in.u64s("loop.counts", 8);
-    if (c.size() != 8)
-        in.fail("loop.counts", "not 8 counters");
+    const std::vector<std::uint64_t> c = in.u64s("loop.counts", 10);
+    if (c.size() != 10)
+        in.fail("loop.counts", "not 10 counters");
     BatchCounts& n = l.counts;
     n.extensionRays = c[0], n.shadowRays = c[1], n.cameraRays = c[2], n.badContributions = c[3];
     n.overflows = c[4], n.statsOverflows = c[5], n.maxBounceCuts = c[6], n.cameraGlassCuts = c[7];
+    n.diffuseVertices = c[8], n.guidedVertices = c[9];
+    if (n.guidedVertices > n.diffuseVertices)
+        in.fail("loop.counts", "more guided vertices than diffuse ones");
     n.cutFlux = in.f64("loop.cut_flux");
     const std::uint64_t batches = static_cast<std::uint64_t>(rules.batches);
     if (l.perBatch == 0)

@@ -272,6 +272,8 @@ void PathLoop::endBatch(std::uint32_t batch, BatchCounts& counts)
     counts.statsOverflows += ctr[FEN_CTR_STATS_OVERFLOWS];
     counts.maxBounceCuts += ctr[FEN_CTR_MAX_DEPTH];
     counts.cameraGlassCuts += ctr[FEN_CTR_CAMERA_GLASS_CUT];
+    counts.diffuseVertices += ctr[FEN_CTR_DIFFUSE_VERTICES];
+    counts.guidedVertices += ctr[FEN_CTR_GUIDED_VERTICES];
     counts.cutFlux += fixed128(ctr + FEN_CTR_CUT_FLUX_LO) / static_cast<double>(params_.fixed_scale);
 }
 

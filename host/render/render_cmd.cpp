@@ -459,7 +459,13 @@ int runRender(const RenderOptions& opt)
                      // the flux the cuts removed, over the flux emitted: the bias of the cap
                      {"max_bounce_flux_share", r.maxBounceFluxShare()},
                      {"max_bounce_flux_lm", r.paths > 0 ? n.cutFlux / static_cast<double>(r.paths) : 0.0},
-                     {"camera_glass_cuts", n.cameraGlassCuts}};
+                     {"camera_glass_cuts", n.cameraGlassCuts},
+                     // the scatters at diffuse vertices, and those whose direction the guide drew
+                     {"diffuse_vertices", n.diffuseVertices},
+                     {"guided_vertices", n.guidedVertices},
+                     {"guided_vertex_share", n.diffuseVertices ? static_cast<double>(n.guidedVertices) /
+                                                                     static_cast<double>(n.diffuseVertices)
+                                                               : 0.0}};
     for (const auto& [name, e] : r.kernels)
         j["kernels"][name] = {{"launches", e.launches}, {"device_seconds", e.deviceSeconds}};
     j["png_exposure"] = exposure;

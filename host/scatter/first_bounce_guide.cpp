@@ -155,6 +155,7 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
         voxelWord_.assign(1, FEN_GUIDE_LEAF);
     }
     deviceParams_.cells = cells_;
+    deviceParams_.every_vertex = opt_.enabled && opt_.everyVertex ? 1u : 0u;
     deviceParams_.voxels_at = static_cast<std::uint32_t>(4 * slotCapacity_);
     deviceParams_.spatial_at = static_cast<std::uint32_t>(deviceParams_.voxels_at + voxels);
     const std::size_t nodesAt = deviceParams_.spatial_at + 2 * spatialCapacity_;

@@ -82,6 +82,12 @@ struct GuideOptions {
     double splitShare = 0.02;         // a leaf holding more of its slot's m than this is split ...
     double minLeafConnections = 8.0;  // ... once it has seen this many contributions
     double memoryMiB = 256.0;         // device memory for the trees and their statistics
+    // Draw from the tables at every diffuse vertex whose slot is learned, not only at a path's
+    // first (the importance a table learned belongs to the place and the direction, whichever
+    // bounce reaches them). Off by default: at equal time it lost on the house, the courtyard and
+    // the snow house -- paths steered into view bounce more and each guided vertex costs a table
+    // draw, more than the variance it saves (docs/results/guiding.md, "Every vertex").
+    bool everyVertex = false;
     // No guide: placeholders bound where a strategy has none (GuideParams.slots = 0).
     static GuideOptions off()
     {

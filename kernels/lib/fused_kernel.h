@@ -13,7 +13,8 @@
  * image is bit-identical to the wavefront's (tests/render/fused_test.cpp).
  * Built with -DFEN_HAS_SENSORS, every segment adds its flux to the sensor cells it crosses
  * (lib/sensor.h), as shade.cl does in the wavefront.
- * Counters: emitted paths, extension and shadow rays, added once per work-item at its end.
+ * Counters: emitted paths, extension and shadow rays, diffuse and guided vertices, added once per
+ * work-item at its end.
  */
 #ifndef FEN_FUSED_KERNEL_H
 #define FEN_FUSED_KERNEL_H
@@ -45,6 +46,7 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
     const Guide guide = {guide_params, guide_tables};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
     ulong emitted = 0, extension = 0, shadow = 0;
+    VertexTally tally = {0, 0};
     for (;;) {
         const ulong first = atom_add(counters + FEN_CTR_NEXT_PATH, (ulong)FEN_FUSED_CHUNK);
         if (first >= params->path_end)
@@ -69,18 +71,18 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
                               p.beta, counters);
 #endif
                 if (as_uint(h.normal.w) == FEN_INVALID_ID) {
-                    if (next_branch(params, &guide, &p, &split, &sm, cam, counters))
+                    if (next_branch(params, &guide, &p, &split, &sm, cam, &tally, counters))
                         continue;
                     break;
                 }
                 Connection c;
-                const int alive = shade_path(params, &guide, &p, &h, &sm, cam, &c, &split, counters);
+                const int alive = shade_path(params, &guide, &p, &h, &sm, cam, &c, &split, &tally, counters);
                 if (as_uint(c.org.w) != FEN_INVALID_ID) {
                     connect_path(params, &c, nodes, packets, prim_material, materials, accum, cell_stats,
                                  stats_pixel_scale, guide_stats, counters);
                     ++shadow;
                 }
-                if (!alive && !next_branch(params, &guide, &p, &split, &sm, cam, counters))
+                if (!alive && !next_branch(params, &guide, &p, &split, &sm, cam, &tally, counters))
                     break;
             }
         }
@@ -91,6 +93,10 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
         atom_add(counters + FEN_CTR_EXTENSION_RAYS, extension);
     if (shadow)
         atom_add(counters + FEN_CTR_SHADOW_RAYS, shadow);
+    if (tally.diffuse)
+        atom_add(counters + FEN_CTR_DIFFUSE_VERTICES, tally.diffuse);
+    if (tally.guided)
+        atom_add(counters + FEN_CTR_GUIDED_VERTICES, tally.guided);
 }
 
 #endif /* FEN_FUSED_KERNEL_H */

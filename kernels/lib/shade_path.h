@@ -18,10 +18,11 @@
  *    Unbiased for any k: the branches' mean estimates what one path would. Where it pays: paths of
  *    large weight, which adaptive emission draws from cells it keeps near the base density --
  *    light that must bounce outside before it can enter (docs/results/house.md);
- *  - the first-bounce guide (guide->params->slots > 0; lib/guide.h): at its first diffuse vertex,
- *    and for every branch of a split there, a path scatters through a leaf drawn from its slot's
- *    learned quadtree, its weight divided by the box's density; its later camera connections carry
- *    the record that feeds the table;
+ *  - the guide (guide->params->slots > 0; lib/guide.h): at its first diffuse vertex, and for
+ *    every branch of a split there, a path scatters through a leaf drawn from its slot's learned
+ *    quadtree, its weight divided by the leaf's density; its later camera connections carry the
+ *    record that feeds the table. With guide->params->every_vertex, every later diffuse vertex
+ *    whose slot is learned draws from its table too (the record stays the first vertex's);
  *  - a path reaching params->max_depth interactions dies (counted, with its flux: a bias that is
  *    reported; the default cap is high enough that only endless paths meet it).
  * Invariant: the result depends only on the path, its hit, its split state, the guide's tables and
@@ -60,13 +61,30 @@ static inline int scatter_diffuse(global const RenderParams* params, PathState* 
     return 0;
 }
 
+/* What a work-item's paths did at their diffuse vertices, for FEN_CTR_DIFFUSE_VERTICES and
+   FEN_CTR_GUIDED_VERTICES (the kernels add them to the counters once per work-item or group). */
+typedef struct {
+    ulong diffuse, guided;
+} VertexTally;
+
+/* The point of the square for a diffuse scatter at a vertex of learned slot record r: drawn from
+   the slot's table with the path's own guide random numbers (keyed by its depth, so every vertex
+   draws its own); *key the leaf, *d its density (lib/guide.h). */
+static inline float2 guide_draw(global const RenderParams* params, const Guide* guide, const PathState* p,
+                                uint4 r, uint* key, float* d)
+{
+    const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_GUIDE);
+    return guide_sample(guide, r, bits, key, d);
+}
+
 /* The diffuse scatter at a path's first diffuse vertex (slot: its guide slot): through a leaf of the
    guide's table when there is a guide, the weight over its density, and the record for what the
    path delivers from here on (lib/guide.h); else scatter_diffuse(). */
 static inline int scatter_first(global const RenderParams* params, const Guide* guide,
                                 global const DevCamera* cam, PathState* p, float3 albedo, float3 n,
-                                float4 u, uint slot, float3* next)
+                                float4 u, uint slot, float3* next, VertexTally* t)
 {
+    t->diffuse += 1;
     if (guide->params->slots == 0u)
         return scatter_diffuse(params, p, albedo, n, u, next);
     uint key;
@@ -74,8 +92,8 @@ static inline int scatter_first(global const RenderParams* params, const Guide* 
     float2 sq = u.yz;
     const uint4 r = guide_record_of(guide, slot);
     if (r.w & FEN_GUIDE_LEARNED) {
-        const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_GUIDE);
-        sq = guide_sample(guide, r, bits, &key, &d);
+        sq = guide_draw(params, guide, p, r, &key, &d);
+        t->guided += 1;
     } else {
         key = guide_leaf(guide, r, sq);
     }
@@ -85,6 +103,29 @@ static inline int scatter_first(global const RenderParams* params, const Guide* 
     p->org.w = alive && y > 0.0f ? guide->params->stats_scale * cam->up.w / (y * d) : 0.0f;
     p->dir.w = as_float(key);
     return alive;
+}
+
+/* The diffuse scatter at a later diffuse vertex x (side n): through the guide's table where
+   guide->params->every_vertex is set and x's slot is learned -- the importance a table holds belongs
+   to the place and direction, not to the bounce that reached them -- the weight over its density;
+   else scatter_diffuse(). The path's record stays its first vertex's: learning is unchanged. */
+static inline int scatter_later(global const RenderParams* params, const Guide* guide, PathState* p,
+                                float3 albedo, float3 x, float3 n, float4 u, float3* next, VertexTally* t)
+{
+    t->diffuse += 1;
+    if (guide->params->every_vertex && guide->params->slots) {
+        const uint4 r = guide_record_of(guide, guide_slot(guide, x, n));
+        if (r.w & FEN_GUIDE_LEARNED) {
+            uint key;
+            float d;
+            const float2 sq = guide_draw(params, guide, p, r, &key, &d);
+            t->guided += 1;
+            const int alive = scatter_diffuse(params, p, albedo, n, (float4)(u.x, sq.x, sq.y, u.w), next);
+            p->beta.xyz /= d;
+            return alive;
+        }
+    }
+    return scatter_diffuse(params, p, albedo, n, u, next);
 }
 
 /* After the interaction at x: the depth count, the cap on it, and the next ray. Returns alive. */
@@ -112,7 +153,7 @@ static inline int leave_vertex(global const RenderParams* params, PathState* p, 
 static inline int shade_path(global const RenderParams* params, const Guide* guide, PathState* p,
                              const SurfaceHit* h, const SurfaceMaterials* sm,
                              global const DevCamera* cam, Connection* c, SplitState* s,
-                             volatile global ulong* counters)
+                             VertexTally* t, volatile global ulong* counters)
 {
     c->org.w = as_float(FEN_INVALID_ID);
     const uint prim = as_uint(h->normal.w);
@@ -155,7 +196,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
             }
         }
         if (p->flags & FEN_PATH_BRANCHED) {
-            alive = scatter_diffuse(params, p, albedo, n, u, &next);
+            alive = scatter_later(params, guide, p, albedo, x, n, u, &next, t);
         } else {
             /* the first diffuse vertex: where a path may split, and where the guide steers */
             p->flags |= FEN_PATH_BRANCHED;
@@ -176,7 +217,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
                     p->flags |= FEN_PATH_SPLIT;
                 }
             }
-            alive = scatter_first(params, guide, cam, p, albedo, n, u, slot, &next);
+            alive = scatter_first(params, guide, cam, p, albedo, n, u, slot, &next, t);
         }
     }
     return leave_vertex(params, p, x, offset_m, ng, next, alive, counters);
@@ -187,7 +228,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
    with its first ray in *p, 0 when no branch is left to go on. */
 static inline int next_branch(global const RenderParams* params, const Guide* guide, PathState* p,
                               SplitState* s, const SurfaceMaterials* sm, global const DevCamera* cam,
-                              volatile global ulong* counters)
+                              VertexTally* t, volatile global ulong* counters)
 {
     while (p->flags & FEN_PATH_SPLIT) {
         const uint b = s->next++;
@@ -201,7 +242,7 @@ static inline int next_branch(global const RenderParams* params, const Guide* gu
         const float3 albedo = surface_albedo(sm, sm->materials + sm->prim_material[prim], prim, x);
         const float4 u = rng_path(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_SCATTER);
         float3 next = n;
-        const int alive = scatter_first(params, guide, cam, p, albedo, n, u, as_uint(s->beta.w), &next);
+        const int alive = scatter_first(params, guide, cam, p, albedo, n, u, as_uint(s->beta.w), &next, t);
         if (leave_vertex(params, p, x, s->pos.w, n, next, alive, counters)) {
             p->flags |= FEN_PATH_ALIVE;
             return 1;

@@ -76,10 +76,16 @@ typedef struct {
     fen_u32 voxels_at;
     fen_u32 spatial_at;
     fen_u32 cells;        /* voxels along each side of the cube (a power of 2) */
+    fen_u32 every_vertex; /* 1: a path is guided at every diffuse vertex whose slot is learned; 0: at
+                             its first only. Learning is the same either way (the first vertex's record) */
+    fen_u32 pad0;
+    fen_u32 pad1;
+    fen_u32 pad2;
 } GuideParams;
-FEN_ASSERT_SIZE(GuideParams, 48);
+FEN_ASSERT_SIZE(GuideParams, 64);
 FEN_ASSERT_OFFSET(GuideParams, slots, 16);
 FEN_ASSERT_OFFSET(GuideParams, stats_scale, 32);
+FEN_ASSERT_OFFSET(GuideParams, every_vertex, 48);
 
 FEN_NS_END
 

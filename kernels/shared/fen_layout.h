@@ -38,6 +38,7 @@
     X(Connection, guide)     \
     X(GuideParams, slots)    \
     X(GuideParams, stats_scale) \
+    X(GuideParams, every_vertex) \
     X(RenderParams, sun_dir) \
     X(RenderParams, path_end) \
     X(RenderParams, seed)    \

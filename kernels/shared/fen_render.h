@@ -38,7 +38,9 @@
 #define FEN_CTR_STATS_OVERFLOWS 10 /* emission statistics beyond their 128-bit range (dropped) */
 #define FEN_CTR_CUT_FLUX_LO 11     /* luminous flux of the paths --max-bounces cut (128-bit fixed */
 #define FEN_CTR_CUT_FLUX_HI 12     /*   point at fixed_scale): the light the cap removed */
-#define FEN_CTR_COUNT 13
+#define FEN_CTR_DIFFUSE_VERTICES 13 /* diffuse vertices the paths scattered at (split branches each count) */
+#define FEN_CTR_GUIDED_VERTICES 14  /* ... and of them, those whose direction the guide drew */
+#define FEN_CTR_COUNT 15
 
 
 FEN_NS_BEGIN

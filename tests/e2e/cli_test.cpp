@@ -511,6 +511,7 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
                 "--adaptive-guide-space-split 0");
     expectError(run("render " + good + out + " --adaptive-guide-memory 1"), 1, "--adaptive-guide-memory 1");
     expectError(run("render " + good + out + " --adaptive-guide-voxels 17"), 1, "--adaptive-guide-voxels 17");
+    expectError(run("render " + good + out + " --adaptive-guide-vertices all"), 1, "--adaptive-guide-vertices 'all'");
     // splitting: a count of branches, a positive weight unit -- never silently the default
     expectError(run("render " + good + out + " --split 0"), 1, "--split 0");
     expectError(run("render " + good + out + " --split -1"), 1, "--split -1");

@@ -228,8 +228,8 @@ TEST(Analytic, SunThroughAGlassPaneLandsWhereGeometrySays)
 }
 
 // The integrating sphere below, rendered with `paths` paths and settings changed by `tweak`.
-void integratingSphere(ocl::Context& ctx, std::uint64_t paths, const std::function<void(RenderSettings&)>& tweak,
-                       const char* what)
+RenderResult integratingSphere(ocl::Context& ctx, std::uint64_t paths,
+                               const std::function<void(RenderSettings&)>& tweak, const char* what)
 {
     // A white sphere (albedo 0.8) with a polar cap of half-angle 30 deg removed, under a uniform
     // sky: every wall point has the same luminance, rho L f / (1 - rho (1 - f)) with f the cap's
@@ -261,6 +261,7 @@ void integratingSphere(ocl::Context& ctx, std::uint64_t paths, const std::functi
     const double capAngle = M_PI * capRings / rings;
     const double f = (1.0 - std::cos(capAngle)) / 2.0;
     expectMean(t.result, 0, rho * 1000.0 * f / (1.0 - rho * (1.0 - f)), 0.01, what);
+    return t.result;
 }
 
 TEST(Analytic, IntegratingSphereConservesEnergyOverManyBounces)
@@ -293,6 +294,43 @@ TEST(Analytic, GuidedFirstBounceConservesEnergy)
         s.emission.adaptive.guide.minConnections = 8.0;
         s.emission.adaptive.guide.minGain = 1.0;  // every slot with enough seen: the weights at work
     }, "integrating sphere, guided first bounce");
+}
+
+TEST(Analytic, GuidedEveryVertexConservesEnergy)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // The same with the guide drawing at every diffuse vertex whose slot is learned: a path's weight
+    // is divided by a density at each of its ~4 bounces, the tables learned at first vertices only.
+    // The mean must not move, and far more vertices than paths must have been guided (the first
+    // vertex alone guides at most one a path: GuidedFirstBounceCountsOneVertexAPath).
+    const auto r = integratingSphere(*ctx, 4u << 20, [](RenderSettings& s) {
+        s.emission.method = EmissionMethod::Adaptive;
+        s.emission.adaptive.firstPass = 1u << 16;
+        s.emission.adaptive.guide.enabled = true;
+        s.emission.adaptive.guide.everyVertex = true;
+        s.emission.adaptive.guide.minConnections = 8.0;
+        s.emission.adaptive.guide.minGain = 1.0;
+    }, "integrating sphere, guided at every vertex");
+    EXPECT_GT(r.counts.guidedVertices, 2 * r.paths);
+    EXPECT_LE(r.counts.guidedVertices, r.counts.diffuseVertices);
+}
+
+TEST(Analytic, GuidedFirstBounceCountsOneVertexAPath)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // The counters: with no splitting a path is guided at most once, at its first diffuse vertex
+    // (most of the emitted paths land on the sphere's outside, where nothing is learned, and the
+    // light inside escapes only through the cap, so paths make several diffuse vertices).
+    const auto r = integratingSphere(*ctx, 1u << 20, [](RenderSettings& s) {
+        s.emission.method = EmissionMethod::Adaptive;
+        s.emission.adaptive.firstPass = 1u << 16;
+        s.emission.adaptive.guide.enabled = true;
+        s.emission.adaptive.guide.minConnections = 8.0;
+        s.emission.adaptive.guide.minGain = 1.0;
+    }, "integrating sphere, guided first bounce, counted");
+    EXPECT_GT(r.counts.guidedVertices, r.paths / 10);
+    EXPECT_LE(r.counts.guidedVertices, r.paths);
+    EXPECT_GT(r.counts.diffuseVertices, r.paths);
 }
 
 TEST(Analytic, SkySeenDirectlyAndThroughGlass)

@@ -86,6 +86,8 @@ TEST_P(Checkpoint, ResumedRenderIsBitIdentical)
     EXPECT_EQ(rest.counts.extensionRays, whole.counts.extensionRays);
     EXPECT_EQ(rest.counts.shadowRays, whole.counts.shadowRays);
     EXPECT_EQ(rest.counts.cutFlux, whole.counts.cutFlux);
+    EXPECT_EQ(rest.counts.diffuseVertices, whole.counts.diffuseVertices);
+    EXPECT_EQ(rest.counts.guidedVertices, whole.counts.guidedVertices);
     if (c.method == EmissionMethod::Adaptive) {
         EXPECT_EQ(rest.emission["checksum"], whole.emission["checksum"]);
         EXPECT_EQ(rest.emission["cells"], whole.emission["cells"]);

@@ -25,6 +25,7 @@ struct Case {
     int splitMax = 1;
     double splitWeight = 1.0;
     bool guide = false;
+    bool guideEveryVertex = false;
 };
 
 RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
@@ -42,6 +43,7 @@ RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
     s.splitMax = c.splitMax;
     s.splitWeight = c.splitWeight;
     s.emission.adaptive.guide.enabled = c.guide;
+    s.emission.adaptive.guide.everyVertex = c.guideEveryVertex;
     s.emission.adaptive.guide.minConnections = 4.0;
     s.emission.adaptive.guide.minGain = 1.0;  // tables in use wherever anything was seen
     s.rois = {Roi{0, 0, 48, 36}};
@@ -66,6 +68,8 @@ TEST_P(FusedKernel, BitIdenticalToTheWavefront)
     EXPECT_EQ(w.counts.extensionRays, f.counts.extensionRays);
     EXPECT_EQ(w.counts.shadowRays, f.counts.shadowRays);
     EXPECT_EQ(w.counts.maxBounceCuts, f.counts.maxBounceCuts);
+    EXPECT_EQ(w.counts.diffuseVertices, f.counts.diffuseVertices);
+    EXPECT_EQ(w.counts.guidedVertices, f.counts.guidedVertices);
     EXPECT_EQ(w.counts.badContributions, 0u);
     EXPECT_EQ(f.counts.badContributions, 0u);
     EXPECT_EQ(w.emission.value("checksum", 0ull), f.emission.value("checksum", 0ull));
@@ -78,6 +82,7 @@ TEST_P(FusedKernel, BitIdenticalToTheWavefront)
         }
         EXPECT_EQ(wg, fg);
         EXPECT_GT(f.emission["guide"].value("learned_slots", 0), 0) << "the guide learned nothing";
+        EXPECT_GT(f.counts.guidedVertices, 0u) << "the guide drew nothing";
     }
     double sum = 0.0;
     for (float v : f.image.rgb)
@@ -100,7 +105,10 @@ INSTANTIATE_TEST_SUITE_P(
                            0.01},
                       // the first-bounce guide, also on every branch of a split path
                       Case{"adaptive_guide_split", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, 3,
-                           16, 1.0, true}),
+                           16, 1.0, true},
+                      // ... and at every diffuse vertex
+                      Case{"adaptive_guide_every_vertex", "room.gltf", EmissionMethod::Adaptive,
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
