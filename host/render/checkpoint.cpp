@@ -134,6 +134,11 @@ std::uint64_t sceneHash(const Scene& s)
     for (const auto& row : s.sky.table_cd_m2)
         for (double v : row)
             f.value(v);
+    if (s.sky.type == SkySpec::Type::Perez) {
+        f.value(s.sky.perezEpsilon);
+        f.value(s.sky.perezDelta);
+        f.value(s.sky.diffuseHorizontal_lux);
+    }
     if (s.sky.groundAlbedo != 0.0)  // only then: a scene without a ground hashes as before grounds existed
         f.value(s.sky.groundAlbedo);
     return f.h;

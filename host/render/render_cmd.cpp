@@ -117,6 +117,16 @@ nlohmann::json skyJson(const SkySpec& spec, const std::optional<Goniogram>& sky)
              {"sun_altitude_deg", spec.sunAltitudeDeg},
              {"sun_azimuth_deg", spec.sunAzimuthDeg}};
         break;
+    case SkySpec::Type::Perez:
+        j = {{"type", "perez"},
+             {"source", spec.where},
+             {"clearness_epsilon", spec.perezEpsilon},
+             {"brightness_delta", spec.perezDelta},
+             {"diffuse_horizontal_lux", spec.diffuseHorizontal_lux},
+             {"illuminance_from", spec.illuminanceFromFile ? "weather file" : "irradiance x Perez 1990 efficacy"},
+             {"sun_altitude_deg", spec.sunAltitudeDeg},
+             {"sun_azimuth_deg", spec.sunAzimuthDeg}};
+        break;
     default:
         j = {{"type", "table"}};
     }
@@ -176,6 +186,8 @@ int runRender(const RenderOptions& opt)
         inputs.emplace_back("the --reference image", referencePath);
         for (const std::string& f : opt.sensors.pointsFiles)
             inputs.emplace_back("a --sensor-points file", f);
+        if (opt.skySun.weather)
+            inputs.emplace_back("the --weather file", *opt.skySun.weather);
         for (const std::string& out : namedOutputs)
             refuseOverwritingInputs(out, "--out", inputs);
         if (!checkpointPath.empty())

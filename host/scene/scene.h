@@ -47,12 +47,14 @@ struct Sun {
 
 // scenes[i].extras.sky as written in the file; host/sky/sky_spec.h turns it into a goniogram.
 struct SkySpec {
-    enum class Type { None, Uniform, Cie, Table };
+    enum class Type { None, Uniform, Cie, Table, Perez };
     Type type = Type::None;
     std::string where;  // "file: scenes[0].extras.sky", for errors found later
     double luminance_cd_m2 = 0.0;  // uniform
     int cieType = 0;               // cie
     double zenithLuminance_cd_m2 = 0.0, sunAltitudeDeg = 0.0, sunAzimuthDeg = 0.0;
+    double perezEpsilon = 1.0, perezDelta = 0.0, diffuseHorizontal_lux = 0.0;  // perez (sun: as cie)
+    bool illuminanceFromFile = true;  // perez: the weather file's lux, or its irradiance times an efficacy
     std::vector<double> zenithDeg, azimuthDeg;  // table
     std::vector<std::vector<double>> table_cd_m2;
     // Any type: the ground's albedo (0..1; 0: off, a black lower hemisphere). Below the horizon

@@ -58,6 +58,8 @@ void validateSensorOptions(SensorOptions& o, SkySunOptions& skySun)
     if (o.daylightFactor) {
         // DF is defined under the CIE standard overcast sky (ISO 15469 type 1, the old CIE overcast
         // sky) with no sun; its absolute level cancels, 10,000 lux by convention.
+        if (skySun.weather || skySun.weatherHour)
+            throw Error("--daylight-factor is defined under the CIE overcast sky with no sun; leave out --weather");
         if (skySun.sky && *skySun.sky != "cie:1")
             throw Error(cat("--daylight-factor is defined under the CIE overcast sky (cie:1), not --sky ",
                             printable(*skySun.sky, 40)));

@@ -352,11 +352,9 @@ double cieRelativeLuminance(int type, double zenithRad, double azimuthRad, doubl
     return model.relative(skyDirection(zenithRad, azimuthRad));
 }
 
-Goniogram cieSky(int type, double zenithLuminance_cd_m2, double sunAltitudeDeg,
-                 double sunAzimuthDeg, const std::string& where)
+Goniogram cieFormulaSky(const CieSkyType& p, double zenithLuminance_cd_m2, double sunAltitudeDeg,
+                        double sunAzimuthDeg, const std::string& where)
 {
-    if (type < 1 || type > 15)
-        throw Error(cat(where, ".cie_type: must be an integer 1..15 (got ", type, ")"));
     if (!std::isfinite(zenithLuminance_cd_m2) || zenithLuminance_cd_m2 < 0)
         throw Error(cat(where, ".zenith_luminance: must be finite and >= 0 cd/m^2 (got ",
                         zenithLuminance_cd_m2, ")"));
@@ -370,7 +368,7 @@ Goniogram cieSky(int type, double zenithLuminance_cd_m2, double sunAltitudeDeg,
     if (azDeg < 0)
         azDeg += 360.0;
     const double sunAzimuth = wrapTwoPi(azDeg * kRadPerDeg);
-    const CieModel model(kCieTypes[type - 1], sunZenith, sunAzimuth);
+    const CieModel model(p, sunZenith, sunAzimuth);
     Grid grid = designGrid(model, sunZenith, sunAzimuth);
 
     const std::vector<double> rel = tabulate(model, sunAzimuth, &grid);
@@ -378,6 +376,14 @@ Goniogram cieSky(int type, double zenithLuminance_cd_m2, double sunAltitudeDeg,
     for (std::size_t k = 0; k < rel.size(); ++k)
         values[k] = zenithLuminance_cd_m2 * rel[k];
     return Goniogram(std::move(grid.theta), std::move(grid.phi), std::move(values), where);
+}
+
+Goniogram cieSky(int type, double zenithLuminance_cd_m2, double sunAltitudeDeg,
+                 double sunAzimuthDeg, const std::string& where)
+{
+    if (type < 1 || type > 15)
+        throw Error(cat(where, ".cie_type: must be an integer 1..15 (got ", type, ")"));
+    return cieFormulaSky(kCieTypes[type - 1], zenithLuminance_cd_m2, sunAltitudeDeg, sunAzimuthDeg, where);
 }
 
 }  // namespace fen

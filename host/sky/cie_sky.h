@@ -58,4 +58,9 @@ double cieRelativeLuminance(int type, double zenithRad, double azimuthRad, doubl
 Goniogram cieSky(int type, double zenithLuminance_cd_m2, double sunAltitudeDeg,
                  double sunAzimuthDeg, const std::string& where = "sky");
 
+// The same tabulation for any parameters of the formula above (the Perez all-weather sky is one,
+// perez_sky.h): the grid design and the per-cell check adapt to p. Errors as cieSky's.
+Goniogram cieFormulaSky(const CieSkyType& p, double zenithLuminance_cd_m2, double sunAltitudeDeg,
+                        double sunAzimuthDeg, const std::string& where = "sky");
+
 }  // namespace fen

@@ -8,6 +8,7 @@
 
 #include "io/image.h"
 #include "sky/cie_sky.h"
+#include "sky/perez_sky.h"
 #include "util/error.h"
 
 namespace fen {
@@ -26,6 +27,9 @@ std::optional<Goniogram> skyAlone(const SkySpec& spec)
                       spec.sunAzimuthDeg, spec.where);
     case SkySpec::Type::Table:
         return tableSky(spec.zenithDeg, spec.azimuthDeg, spec.table_cd_m2, spec.where);
+    case SkySpec::Type::Perez:
+        return perezSky({spec.perezEpsilon, spec.perezDelta}, spec.diffuseHorizontal_lux, spec.sunAltitudeDeg,
+                        spec.sunAzimuthDeg, spec.where);
     }
     return std::nullopt;
 }

@@ -6,8 +6,10 @@
 #include <CLI/CLI.hpp>
 
 #include "io/image.h"
+#include "io/weather_file.h"
 #include "sky/cie_sky.h"
 #include "sky/solar_position.h"
+#include "sky/weather_sky.h"
 #include "util/error.h"
 
 namespace fen {
@@ -66,6 +68,12 @@ void addSkySunOptions(CLI::App* render, SkySunOptions* o)
     render->add_option("--sun-at", o->sunAt,
                        "Local date and time with its UTC offset, e.g. 2026-06-21T14:00+02:00: the sun's "
                        "position at --site");
+    render->add_option("--weather", o->weather,
+                       "An EPW weather file: with --weather-hour, the sun and a Perez all-weather sky of that hour "
+                       "(replacing the scene's sun and sky)");
+    render->add_option("--weather-hour", o->weatherHour,
+                       "The weather file's hour MM-DD:HH, the hour 1..24 ending then in the file's standard time "
+                       "(06-21:13: 12:00-13:00 on 21 June)");
     render->add_option("--ground-albedo", o->groundAlbedo,
                        "The ground's albedo, 0 to 1: below the horizon the sky glows at albedo x the horizontal "
                        "illuminance of the sky and sun / pi (0: off, the default)");
@@ -79,7 +87,46 @@ double cieHorizontalIlluminancePerZenith(int type, double sunAltitudeDeg, double
 SkySunReport applySkySunOptions(const SkySunOptions& o, Scene* scene)
 {
     SkySunReport report;
-    const bool sunBrightnessFromFile = scene->sun.present && !o.sunLux;
+    const bool sunBrightnessFromFile = scene->sun.present && !o.sunLux && !o.weather;
+
+    // A weather file's hour: the sun and the sky both (weather_sky.h).
+    if (o.weather.has_value() != o.weatherHour.has_value())
+        throw Error(o.weather ? "--weather needs --weather-hour MM-DD:HH (which hour of the file)"
+                              : "--weather-hour needs --weather FILE.epw");
+    if (o.weather) {
+        const std::pair<bool, const char*> others[] = {
+            {o.sky.has_value(), "--sky"},       {o.skyZenith_cd_m2.has_value(), "--sky-zenith"},
+            {o.skyLux.has_value(), "--sky-lux"}, {o.sun.has_value(), "--sun"},
+            {o.sunLux.has_value(), "--sun-lux"}, {o.site.has_value(), "--site"},
+            {o.sunAt.has_value(), "--sun-at"}};
+        for (const auto& [given, name] : others)
+            if (given)
+                throw Error(cat("--weather sets the sun and the sky of its hour; ", name, " cannot be given with it"));
+        int month = 0, day = 0, hour = 0;
+        parseWeatherHour(*o.weatherHour, "--weather-hour", &month, &day, &hour);
+        const WeatherFile file = readWeatherFile(*o.weather);
+        const HourSky h = hourSky(file, file.at(month, day, hour, "--weather-hour"), "--weather");
+        const double radius = scene->sun.present ? scene->sun.angularRadiusRad : 0.0;
+        scene->sun = Sun{};
+        if (h.sunNormal_lux > 0.0) {
+            scene->sun.present = true;
+            scene->sun.nodeName = "--weather";
+            scene->sun.travelDirection = -directionFromAltitudeAzimuth(h.sunAltitudeDeg, h.sunAzimuthDeg);
+            scene->sun.illuminanceRgb_lux = glm::dvec3(h.sunNormal_lux);
+            scene->sun.angularRadiusRad = radius;
+        }
+        SkySpec spec;
+        spec.type = SkySpec::Type::Perez;
+        spec.where = cat("--weather ", printable(*o.weather, 120), " ", printable(*o.weatherHour, 20));
+        spec.perezEpsilon = h.condition.epsilon;
+        spec.perezDelta = h.condition.delta;
+        spec.diffuseHorizontal_lux = h.diffuseHorizontal_lux;
+        spec.sunAltitudeDeg = h.sunAltitudeDeg;
+        spec.sunAzimuthDeg = h.sunAzimuthDeg;
+        spec.illuminanceFromFile = h.illuminanceFromFile;
+        spec.groundAlbedo = scene->sky.groundAlbedo;  // the file's ground stays unless --ground-albedo says
+        scene->sky = spec;
+    }
 
     // The sun's position: --sun ALT,AZ, or --site and --sun-at, or the file's.
     if (o.site.has_value() != o.sunAt.has_value())

@@ -7,6 +7,8 @@
 //   --site LAT,LON --sun-at TIME       ... or from a place and a moment (solar_position.h)
 //   --sun-lux E                        the sun's normal illuminance (lux)
 //   --ground-albedo A                  the ground's albedo, 0..1: its glow below the horizon (0: off)
+//   --weather F.epw --weather-hour MM-DD:HH   the sun and a Perez sky of one hour of a weather file
+//                                      (weather_sky.h); replaces all of the above but the ground
 // Invariants: whatever is given replaces what the file says, and nothing else changes; a CIE sky
 // always takes its sun position from the sun used (given or the file's); every inconsistency is a
 // one-line fen::Error naming the option before anything is rendered.
@@ -33,6 +35,8 @@ struct SkySunOptions {
     std::optional<std::string> site;       // --site LAT,LON
     std::optional<std::string> sunAt;      // --sun-at
     std::optional<double> groundAlbedo;    // --ground-albedo
+    std::optional<std::string> weather;    // --weather FILE.epw
+    std::optional<std::string> weatherHour; // --weather-hour MM-DD:HH
 };
 
 // Registers the options above on `render` (the `fenestra render` subcommand).

@@ -687,6 +687,37 @@ TEST(CliBlender, SkyAndSunOptionsAreOneLineErrors)
     expectError(run("render " + scene + " --out " + out + " --paths 1000 --sun 95,180"), 1, "--sun 95,180");
 }
 
+// A weather file's hour gives the sun and a Perez sky: the JSON says so, with the hour's numbers,
+// and every way of asking wrongly is a one-line error naming the option, the file or the hour.
+TEST(CliWeather, AnHourOfTheShippedYear)
+{
+    const std::string epw = std::string(FEN_SCENES_DIR) + "/weather/tmy_45.000_8.000_2005_2016.epw";
+    const std::string scene = std::string(FEN_SCENES_DIR) + "/room.gltf";
+    const std::string dir = test::tempDir("cli-weather");
+    const CliRun r = run("render " + scene + " --out " + dir + "/w.exr --weather " + epw +
+                         " --weather-hour 06-21:13 --paths 200000 --width 32 --no-progress");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(slurp(dir + "/w.json"));
+    EXPECT_EQ(j["sky"]["type"], "perez");
+    EXPECT_NEAR(j["sky"]["sun_altitude_deg"].get<double>(), 68.4, 0.3);
+    EXPECT_NEAR(j["sky"]["horizontal_illuminance_lux"].get<double>(), j["sky"]["diffuse_horizontal_lux"].get<double>(),
+                1e-6 * j["sky"]["diffuse_horizontal_lux"].get<double>());
+    EXPECT_EQ(j["sky"]["illuminance_from"], "irradiance x Perez 1990 efficacy");
+    EXPECT_GT(j["mean_luminance_cd_m2"].get<double>(), 0.0);
+    const std::string out = " --out " + dir + "/x.exr --paths 1000 --no-progress";
+    expectError(run("render " + scene + out + " --weather " + epw), 1, "--weather needs --weather-hour");
+    expectError(run("render " + scene + out + " --weather-hour 06-21:13"), 1, "--weather-hour needs --weather");
+    expectError(run("render " + scene + out + " --weather " + epw + " --weather-hour 6/21"), 1, "--weather-hour '6/21'");
+    expectError(run("render " + scene + out + " --weather " + epw + " --weather-hour 06-21:13 --sky cie:12"), 1,
+                "--sky cannot be given with it");
+    expectError(run("render " + scene + out + " --weather " + epw + " --weather-hour 01-01:02"), 1,
+                "tmy_45.000_8.000_2005_2016.epw:10 (1-1 hour 2): the sun is");
+    expectError(run("render " + scene + out + " --weather " + dir + "/none.epw --weather-hour 06-21:13"), 1,
+                "none.epw: cannot open the weather file");
+    expectError(run("render " + scene + out + " --weather " + epw + " --weather-hour 06-21:13 --daylight-factor "
+                    "--work-plane floor"), 1, "--daylight-factor is defined under the CIE overcast sky with no sun; leave out --weather");
+}
+
 // Textures a scene cannot have: a missing file, bytes that are no image, an image too large.
 TEST(CliBlender, BadTexturesAreOneLineErrorsNamingTheImage)
 {
