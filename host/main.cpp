@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "batch/batch_cmd.h"
 #include "bench/bench.h"
 #include "render/render_cmd.h"
 #include "cl/cl_error.h"
@@ -95,6 +96,14 @@ int main(int argc, char** argv)
     auto* renderCmd = app.add_subcommand("render", "Light-trace a glTF scene to EXR + PNG + JSON");
     fen::addRenderOptions(*renderCmd, render);
 
+    fen::BatchOptions batch;
+    auto* batchCmd = app.add_subcommand("batch", "Run the renders of a jobs file (JSON) in one process");
+    batchCmd->add_option("jobs", batch.jobsPath,
+                         "The jobs file: {\"jobs\": [{\"name\": N, \"render\": [arguments of fenestra render]}, ...]}")
+        ->required();
+    batchCmd->add_option("--device", batch.device, "OpenCL device for every job: index or name substring");
+    batchCmd->add_flag("--rerun", batch.rerun, "Run every job, also those finished and unchanged since");
+
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
         std::string names;
@@ -127,6 +136,8 @@ int main(int argc, char** argv)
         }
         if (*falseColorCmd)
             return fen::runFalseColor(falseColor);
+        if (*batchCmd)
+            return fen::runBatch(batch);
         if (*benchCmd) {
             bench.widths = parseWidths(layouts);
             bench.embree = !noEmbree;

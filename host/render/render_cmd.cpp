@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <optional>
 #include <filesystem>
 #include <cerrno>
 #include <cmath>
@@ -139,7 +140,7 @@ nlohmann::json skyJson(const SkySpec& spec, const std::optional<Goniogram>& sky)
 
 }  // namespace
 
-int runRender(const RenderOptions& opt)
+int runRender(const RenderOptions& opt, const RenderHooks& hooks)
 {
     const auto t0 = std::chrono::steady_clock::now();
     const bool noImage = opt.sensors.noImage;
@@ -262,7 +263,21 @@ int runRender(const RenderOptions& opt)
         std::fprintf(stderr, "fenestra: warning: %s has neither a sun nor a sky: the image is black\n",
                      scene.source.c_str());
 
-    ocl::Context ctx(ocl::selectDevice(opt.device));
+    std::optional<ocl::Context> ownContext;
+    if (!hooks.context)
+        ownContext.emplace(ocl::selectDevice(opt.device));
+    ocl::Context& ctx = hooks.context ? *hooks.context : *ownContext;
+    if (hooks.inputs) {
+        *hooks.inputs = scene.files;
+        if (!referencePath.empty())
+            hooks.inputs->push_back(referencePath);
+        for (const std::string& f : opt.sensors.pointsFiles)
+            hooks.inputs->push_back(f);
+        if (opt.skySun.weather)
+            hooks.inputs->push_back(*opt.skySun.weather);
+    }
+    if (hooks.jsonPath)
+        *hooks.jsonPath = jsonPath;
     // What the film and the path pool will take, against what the device and the host have.
     checkMemoryNeeds(renderMemoryNeeds(width, height,
                                        opt.poolSize ? static_cast<std::uint64_t>(*opt.poolSize)

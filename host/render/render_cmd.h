@@ -1,12 +1,28 @@
 // render_cmd.h — `fenestra render`: runs a render with the options of render_options.h.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "render/render_options.h"
 
 namespace fen {
 
+namespace ocl {
+class Context;
+}
+
+// What a caller running many renders in one process (`fenestra batch`) shares with a render and
+// learns from it. All optional.
+struct RenderHooks {
+    ocl::Context* context = nullptr;          // the device's context, made once (else the render makes its own)
+    std::vector<std::string>* inputs = nullptr;  // receives every file the render read (scene, its buffers
+                                                 // and textures, the reference, sensor points, weather)
+    std::string* jsonPath = nullptr;          // receives the JSON output's path
+};
+
 // Returns the exit status: 0, or 130 when a signal stopped the render early (its outputs are
 // written, for the batches finished).
-int runRender(const RenderOptions& opt);
+int runRender(const RenderOptions& opt, const RenderHooks& hooks = {});
 
 }  // namespace fen

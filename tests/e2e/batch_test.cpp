@@ -1,0 +1,127 @@
+// batch_test.cpp — `fenestra batch` as a user runs it (host/batch/batch_cmd.h): a batch of mixed
+// jobs writes the same image bytes as the same jobs run one by one with `fenestra render`; a job
+// that fails is reported and the others go on; a rerun skips the jobs finished and unchanged, and
+// runs one again when a file it read changes; a broken jobs file is one line naming the key.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "e2e/cli_run.h"
+#include "support/gltf_writer.h"
+
+namespace fen {
+namespace {
+
+using test::CliRun;
+using test::expectError;
+using test::run;
+using test::slurp;
+
+std::string quoted(const std::vector<std::string>& args)
+{
+    nlohmann::json j = args;
+    return j.dump();
+}
+
+TEST(CliBatch, JobsWriteTheirRendersBytesAndAFailureDoesNotStopTheRest)
+{
+    const std::string dir = test::tempDir("cli-batch");
+    const std::string scenes = std::string(FEN_SCENES_DIR);
+    const std::string epw = scenes + "/weather/tmy_45.000_8.000_2005_2016.epw";
+    // A copy of the room, so that the rerun below can change a file a job read.
+    std::filesystem::copy_file(scenes + "/room.gltf", dir + "/room.gltf",
+                               std::filesystem::copy_options::overwrite_existing);
+    const std::vector<std::pair<std::string, std::vector<std::string>>> jobs = {
+        {"adaptive", {dir + "/room.gltf", "--paths", "300000", "--width", "48", "--seed", "3", "--no-progress"}},
+        {"weather", {scenes + "/room.gltf", "--weather", epw, "--weather-hour", "06-21:13", "--paths", "300000",
+                     "--width", "48", "--no-progress"}},
+        {"broken", {scenes + "/no_such_scene.gltf", "--paths", "1000", "--no-progress"}},
+        {"uniform", {scenes + "/inner_room.gltf", "--method", "uniform", "--paths", "200000", "--width", "40",
+                     "--no-progress"}}};
+    std::string text = "{\"jobs\": [";
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        std::vector<std::string> args = jobs[i].second;
+        args.push_back("--out");
+        args.push_back(dir + "/batch_" + jobs[i].first + ".exr");
+        text += (i ? ", " : "") + std::string("{\"name\": \"") + jobs[i].first + "\", \"render\": " + quoted(args) + "}";
+    }
+    text += "]}";
+    std::ofstream(dir + "/jobs.json") << text;
+
+    const CliRun b = run("batch " + dir + "/jobs.json");
+    EXPECT_EQ(b.status, 1) << b.err;  // one job failed, after all ran
+    EXPECT_NE(b.err.find("broken: failed: "), std::string::npos) << b.err;
+    EXPECT_NE(b.err.find("no_such_scene.gltf"), std::string::npos) << b.err;
+    EXPECT_NE(b.err.find("fenestra: error: batch "), std::string::npos) << b.err;
+    auto statuses = [&] {
+        const auto s = nlohmann::json::parse(slurp(dir + "/jobs.summary.json"));
+        std::vector<std::string> out;
+        for (const auto& j : s["jobs"])
+            out.push_back(j["status"]);
+        return out;
+    };
+    EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "done", "failed", "done"}));
+    const std::string csv = slurp(dir + "/jobs.summary.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << csv;
+
+    // The same jobs one by one: the same bytes.
+    for (const auto& [name, args] : jobs) {
+        if (name == "broken")
+            continue;
+        std::string line = "render";
+        for (const std::string& a : args)
+            line += " '" + a + "'";
+        const CliRun r = run(line + " --out " + dir + "/one_" + name + ".exr");
+        ASSERT_EQ(r.status, 0) << r.err;
+        const std::string one = slurp(dir + "/one_" + name + ".exr"), batch = slurp(dir + "/batch_" + name + ".exr");
+        EXPECT_FALSE(one.empty());
+        EXPECT_TRUE(one == batch) << name << ": the batch's image differs from the render's";
+    }
+
+    // A rerun skips what finished and is unchanged; a changed input runs its job again.
+    const auto before = std::filesystem::last_write_time(dir + "/batch_uniform.exr");
+    const CliRun again = run("batch " + dir + "/jobs.json");
+    EXPECT_EQ(again.status, 1) << again.err;
+    EXPECT_EQ(statuses(), (std::vector<std::string>{"skipped", "skipped", "failed", "skipped"}));
+    EXPECT_EQ(std::filesystem::last_write_time(dir + "/batch_uniform.exr"), before);
+    std::ofstream(dir + "/room.gltf", std::ios::app) << "\n";  // the same scene, other bytes
+    const CliRun changed = run("batch " + dir + "/jobs.json");
+    EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "skipped", "failed", "skipped"})) << changed.err;
+    const CliRun all = run("batch --rerun " + dir + "/jobs.json");
+    EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "done", "failed", "done"})) << all.err;
+}
+
+TEST(CliBatch, BrokenJobsFilesAreOneLineErrorsNamingTheKey)
+{
+    const std::string dir = test::tempDir("cli-batch-bad");
+    auto jobsFile = [&](const std::string& name, const std::string& text) {
+        std::ofstream(dir + "/" + name) << text;
+        return dir + "/" + name;
+    };
+    expectError(run("batch " + dir + "/none.json"), 1, "none.json: cannot open the jobs file");
+    expectError(run("batch " + jobsFile("a.json", "{jobs: 1")), 1, "a.json: not JSON");
+    expectError(run("batch " + jobsFile("b.json", "{\"jobs\": [], \"x\": 1}")), 1, "b.json: unknown key 'x'");
+    expectError(run("batch " + jobsFile("c.json", "{\"jobs\": []}")), 1, "\"jobs\" must be a non-empty array");
+    expectError(run("batch " + jobsFile("d.json", "{\"jobs\": [{\"name\": \"a\", \"render\": [\"x\"], \"out\": 1}]}")), 1,
+                "d.json: jobs[0]: unknown key 'out'");
+    expectError(run("batch " + jobsFile("e.json", "{\"jobs\": [{\"name\": \"a b\", \"render\": [\"x\"]}]}")), 1,
+                "jobs[0].name 'a b'");
+    expectError(run("batch " + jobsFile("f.json", "{\"jobs\": [{\"name\": \"a\", \"render\": [\"x\"]}, "
+                                                  "{\"name\": \"a\", \"render\": [\"y\"]}]}")),
+                1, "jobs[1].name 'a': another job has this name");
+    expectError(run("batch " + jobsFile("g.json", "{\"jobs\": [{\"name\": \"a\", \"render\": [1]}]}")), 1,
+                "jobs[0].render[0]: a string is required");
+    // A job's own bad arguments fail that job, with the render's message.
+    const CliRun r = run("batch " + jobsFile("h.json", "{\"jobs\": [{\"name\": \"dev\", \"render\": [\"" +
+                                                           std::string(FEN_SCENES_DIR) +
+                                                           "/room.gltf\", \"--device\", \"0\", \"--out\", \"" + dir +
+                                                           "/d.exr\"]}]}"));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("dev: failed: --device: a batch runs every job on its own device"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace fen
