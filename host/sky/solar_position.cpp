@@ -147,21 +147,32 @@ SolarPosition solarPosition(double latitudeDeg, double longitudeDeg, const Local
     const double eps0 = 23.0 + (26.0 + (21.448 - jc * (46.815 + jc * (0.00059 - jc * 0.001813))) / 60.0) / 60.0;
     const double eps = eps0 + 0.00256 * std::cos(omega * kDeg);                   // obliquity, corrected
     const double decl = std::asin(std::sin(eps * kDeg) * std::sin(lambda * kDeg));
+    // The hour angle from the right ascension and the apparent sidereal time (Meeus 12.4 and the
+    // nutation in right ascension), not from the equation-of-time series NOAA's sheet uses.
+    const double alpha = std::atan2(std::cos(eps * kDeg) * std::sin(lambda * kDeg), std::cos(lambda * kDeg)) / kDeg;
+    const double d = jd - 2451545.0;
+    const double gmst = 280.46061837 + 360.98564736629 * d + jc * jc * (0.000387933 - jc / 38710000.0);
+    const double gast = gmst - 0.00478 * std::sin(omega * kDeg) * std::cos(eps * kDeg);
     const double y = std::pow(std::tan(eps * kDeg / 2.0), 2.0);
     const double l0r = l0 * kDeg, mr = m * kDeg;
     const double eot = 4.0 / kDeg *
                        (y * std::sin(2.0 * l0r) - 2.0 * e * std::sin(mr) + 4.0 * e * y * std::sin(mr) * std::cos(2.0 * l0r) -
                         0.5 * y * y * std::sin(4.0 * l0r) - 1.25 * e * e * std::sin(2.0 * mr));
-    // True solar time (minutes) at the longitude, from the UTC time of day.
-    const double utcMinutes = std::fmod((jd + 0.5) - std::floor(jd + 0.5), 1.0) * 1440.0;
-    const double tst = std::fmod(std::fmod(utcMinutes + eot + 4.0 * longitudeDeg, 1440.0) + 1440.0, 1440.0);
-    const double hourAngle = tst / 4.0 < 0.0 ? tst / 4.0 + 180.0 : tst / 4.0 - 180.0;
+    double hourAngle = std::fmod(gast + longitudeDeg - alpha, 360.0);  // (-180, 180]: afternoon positive
+    if (hourAngle > 180.0)
+        hourAngle -= 360.0;
+    if (hourAngle <= -180.0)
+        hourAngle += 360.0;
     const double lat = latitudeDeg * kDeg;
     const double cosZ = std::clamp(std::sin(lat) * std::sin(decl) + std::cos(lat) * std::cos(decl) * std::cos(hourAngle * kDeg),
                                    -1.0, 1.0);
     const double zenith = std::acos(cosZ);
+    // Topocentric: seen from the Earth's surface, not its centre, the sun stands lower by its
+    // horizontal parallax (8.794 arc seconds at 1 AU) times the cosine of its altitude; its
+    // azimuth does not change (to first order), so the azimuth below uses the geocentric zenith.
+    const double topoZenith = zenith + 8.794 / 3600.0 * kDeg * std::sin(zenith);
     SolarPosition s;
-    s.altitudeDeg = 90.0 - zenith / kDeg;
+    s.altitudeDeg = 90.0 - topoZenith / kDeg;
     s.apparentAltitudeDeg = s.altitudeDeg + refractionDeg(s.altitudeDeg);
     s.declinationDeg = decl / kDeg;
     s.equationOfTimeMin = eot;

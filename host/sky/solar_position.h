@@ -1,8 +1,11 @@
 // solar_position.h — where the sun is, seen from a place on Earth at a moment (DESIGN.md §1, "Sun
 // and sky from the command line"): NOAA's solar position algorithm (the equations of NOAA's Solar
 // Calculator, after J. Meeus, "Astronomical Algorithms", 1991: the sun's apparent longitude, the
-// obliquity, the declination and the equation of time from the Julian century; the hour angle
-// from the true solar time), with the atmospheric refraction NOAA's calculator applies.
+// obliquity and the declination from the Julian century), with two refinements that bring it
+// within 0.01 degrees of SPA -- the hour angle from the right ascension and the apparent sidereal
+// time (Meeus 12.4) instead of NOAA's equation-of-time series, and the topocentric parallax
+// (8.794 arc seconds times the cosine of the altitude) -- and the atmospheric refraction NOAA's
+// calculator applies. NOAA's own sheet was 0.014 degrees off at worst on the table below.
 //
 // Checked against NREL's SPA (Reda and Andreas 2004, as pvlib implements it) on 400 places and
 // moments, 1990-2060, latitudes -66..66 (tests/data/solar_position_pvlib.csv, made by
