@@ -6,7 +6,8 @@ the tests needs it) as `gendaylit -ang ALT 180 -P EPSILON DELTA` over a grid of 
 clearness values in each of the model's eight bins and brightness values, and writes
 tests/data/perez_gendaylit.csv: the inputs and the five coefficients a..e gendaylit derives (the
 brightfunc's arguments 3..7), or why it refused the condition; and tests/data/perez_condition_gendaylit.csv, the clearness and
-brightness gendaylit derives from direct normal and diffuse horizontal irradiance. Altitudes stay at or below 87 degrees and brightness in (0.01, 0.6],
+brightness gendaylit derives from direct normal and diffuse horizontal irradiance; and
+tests/data/perez_efficacy_gendaylit.csv, the direct normal illuminance it derives from irradiance. Altitudes stay at or below 87 degrees and brightness in (0.01, 0.6],
 where gendaylit uses the inputs as given. Run: python3 scripts/radiance/perez_reference.py
 """
 import csv
@@ -50,5 +51,22 @@ path = os.path.join(root, "tests", "data", "perez_condition_gendaylit.csv")
 with open(path, "w", newline="") as f:
     w = csv.writer(f)
     w.writerow(["sun_altitude_deg", "direct_normal_w_m2", "diffuse_horizontal_w_m2", "epsilon", "delta"])
+    w.writerows(rows)
+print("wrote %d rows to %s" % (len(rows), path), file=sys.stderr)
+
+# The direct normal illuminance Perez's 1990 efficacy model gives: `gendaylit -ang ALT 180 -W DNI DHI -O 2`
+# prints the sun's luminance (cd/m^2, as %.3e) over its disk of 0.2665 degrees radius; times the
+# disk's solid angle that is the direct normal illuminance (precipitable water 2 cm, its default).
+rows = []
+for alt in (15, 30, 50, 70):
+    for dni, dhi in ((100, 150), (400, 120), (700, 100), (850, 80)):
+        out = subprocess.run([binary, "-ang", str(alt), "180", "-W", str(dni), str(dhi), "-O", "2"], capture_output=True,
+                             text=True, check=True).stdout.split("\n")
+        k = next(i for i, l in enumerate(out) if l.startswith("void light solar"))
+        rows.append([alt, dni, dhi, out[k + 3].split()[1]])  # as printed: %.3e
+path = os.path.join(root, "tests", "data", "perez_efficacy_gendaylit.csv")
+with open(path, "w", newline="") as f:
+    w = csv.writer(f)
+    w.writerow(["sun_altitude_deg", "direct_normal_w_m2", "diffuse_horizontal_w_m2", "sun_luminance_cd_m2"])
     w.writerows(rows)
 print("wrote %d rows to %s" % (len(rows), path), file=sys.stderr)

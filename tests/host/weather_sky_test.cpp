@@ -1,5 +1,5 @@
-// weather_sky_test.cpp — the Perez all-weather sky (host/sky/perez_sky.h) against Radiance's
-// gendaylit (tests/data/perez_*gendaylit.csv, made by scripts/radiance/perez_reference.py), its
+// weather_sky_test.cpp — the Perez all-weather sky and its direct efficacy (host/sky/perez_sky.h)
+// against Radiance's gendaylit (tests/data/perez_*gendaylit.csv, made by scripts/radiance/perez_reference.py), its
 // tabulation against its formula, the EPW reader (host/io/weather_file.h) on the shipped weather
 // file and on broken ones, and an hour's sun and sky (host/sky/weather_sky.h).
 #include <algorithm>
@@ -85,6 +85,26 @@ TEST(PerezSky, ClearnessAndBrightnessAgreeWithGendaylit)
         ++used;
     }
     EXPECT_GE(used, 18);
+}
+
+TEST(PerezSky, DirectEfficacyAgreesWithGendaylit)
+{
+    // gendaylit -ang ALT 180 -W DNI DHI -O 2: the sun's luminance times its disk's solid angle, the
+    // direct normal illuminance of Perez's 1990 efficacy model with 2 cm of precipitable water
+    // (W = exp(0.07 T_d - 0.075): a dew point of 10.97 deg C) and 1 January's eccentricity (above).
+    const double dewPoint = (std::log(2.0) + 0.075) / 0.07;
+    int rows = 0;
+    for (const auto& r : readCsv("perez_efficacy_gendaylit.csv")) {
+        const double z = (90.0 - r[0]) * M_PI / 180.0;
+        const PerezCondition c = perezCondition(z, 1, r[1], r[2], "test");
+        // printed as %.3e: within half a unit of its last digit
+        const double disk_sr = 2.0 * M_PI * (1.0 - std::cos(0.2665 * M_PI / 180.0));
+        const double halfDigit = 0.5 * std::pow(10.0, std::floor(std::log10(r[3])) - 3.0);
+        EXPECT_NEAR(r[1] * perezDirectEfficacy(z, c, dewPoint), r[3] * disk_sr, (halfDigit + 1e-6 * r[3]) * disk_sr)
+            << "altitude " << r[0] << ", DNI " << r[1] << ", DHI " << r[2];
+        ++rows;
+    }
+    EXPECT_EQ(rows, 16);
 }
 
 TEST(PerezSky, TabulatedSkyFollowsItsFormulaAndItsIlluminance)
