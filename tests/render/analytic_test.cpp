@@ -281,56 +281,43 @@ TEST(Analytic, SplitPathsConserveEnergy)
     }, "integrating sphere, split paths");
 }
 
-TEST(Analytic, GuidedFirstBounceConservesEnergy)
+// Adaptive emission with the guide, its tables learned on the passes, used wherever a slot has
+// seen anything (the weights at work): at a path's first diffuse vertex, or at every one.
+std::function<void(RenderSettings&)> guided(bool everyVertex)
 {
-    FEN_CL_CONTEXT_OR_SKIP(ctx);
-    // Adaptive emission with the first-bounce guide: the tables are learned on the passes (the
-    // camera sees the lower part of the sphere, so they are far from uniform), and every path's
-    // weight is divided by the density of the box it left through. The mean must not move.
-    integratingSphere(*ctx, 4u << 20, [](RenderSettings& s) {
+    return [everyVertex](RenderSettings& s) {
         s.emission.method = EmissionMethod::Adaptive;
         s.emission.adaptive.firstPass = 1u << 16;
         s.emission.adaptive.guide.enabled = true;
+        s.emission.adaptive.guide.everyVertex = everyVertex;
         s.emission.adaptive.guide.minConnections = 8.0;
-        s.emission.adaptive.guide.minGain = 1.0;  // every slot with enough seen: the weights at work
-    }, "integrating sphere, guided first bounce");
+        s.emission.adaptive.guide.minGain = 1.0;
+    };
+}
+
+TEST(Analytic, GuidedFirstBounceConservesEnergy)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // The camera sees the lower part of the sphere, so the tables are far from uniform, and every
+    // path's weight is divided by the density of the leaf it left through. The mean must not move.
+    // The counters: with no splitting a path is guided at most once, at its first diffuse vertex
+    // (most emitted paths land on the sphere's outside, where nothing is learned; the light inside
+    // escapes only through the cap, so those paths make several diffuse vertices).
+    const auto r = integratingSphere(*ctx, 4u << 20, guided(false), "integrating sphere, guided first bounce");
+    EXPECT_GT(r.counts.guidedVertices, r.paths / 10);
+    EXPECT_LE(r.counts.guidedVertices, r.paths);
+    EXPECT_GT(r.counts.diffuseVertices, r.paths);
 }
 
 TEST(Analytic, GuidedEveryVertexConservesEnergy)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
-    // The same with the guide drawing at every diffuse vertex whose slot is learned: a path's weight
-    // is divided by a density at each of its ~4 bounces, the tables learned at first vertices only.
-    // The mean must not move, and far more vertices than paths must have been guided (the first
-    // vertex alone guides at most one a path: GuidedFirstBounceCountsOneVertexAPath).
-    const auto r = integratingSphere(*ctx, 4u << 20, [](RenderSettings& s) {
-        s.emission.method = EmissionMethod::Adaptive;
-        s.emission.adaptive.firstPass = 1u << 16;
-        s.emission.adaptive.guide.enabled = true;
-        s.emission.adaptive.guide.everyVertex = true;
-        s.emission.adaptive.guide.minConnections = 8.0;
-        s.emission.adaptive.guide.minGain = 1.0;
-    }, "integrating sphere, guided at every vertex");
+    // The guide drawing at every diffuse vertex whose slot is learned: a path's weight is divided
+    // by a density at each of its bounces, the tables learned at first vertices only. The mean must
+    // not move, and far more vertices than paths must have been guided (at most one a path above).
+    const auto r = integratingSphere(*ctx, 4u << 20, guided(true), "integrating sphere, guided at every vertex");
     EXPECT_GT(r.counts.guidedVertices, 2 * r.paths);
     EXPECT_LE(r.counts.guidedVertices, r.counts.diffuseVertices);
-}
-
-TEST(Analytic, GuidedFirstBounceCountsOneVertexAPath)
-{
-    FEN_CL_CONTEXT_OR_SKIP(ctx);
-    // The counters: with no splitting a path is guided at most once, at its first diffuse vertex
-    // (most of the emitted paths land on the sphere's outside, where nothing is learned, and the
-    // light inside escapes only through the cap, so paths make several diffuse vertices).
-    const auto r = integratingSphere(*ctx, 1u << 20, [](RenderSettings& s) {
-        s.emission.method = EmissionMethod::Adaptive;
-        s.emission.adaptive.firstPass = 1u << 16;
-        s.emission.adaptive.guide.enabled = true;
-        s.emission.adaptive.guide.minConnections = 8.0;
-        s.emission.adaptive.guide.minGain = 1.0;
-    }, "integrating sphere, guided first bounce, counted");
-    EXPECT_GT(r.counts.guidedVertices, r.paths / 10);
-    EXPECT_LE(r.counts.guidedVertices, r.paths);
-    EXPECT_GT(r.counts.diffuseVertices, r.paths);
 }
 
 TEST(Analytic, SkySeenDirectlyAndThroughGlass)
