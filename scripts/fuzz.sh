@@ -3,7 +3,8 @@
 # UndefinedBehaviorSanitizer) in build-fuzz/, apart from build/, and runs it on its committed seeds
 # (never written to) plus a working corpus in build-fuzz/: --target scene (the scene loader, the
 # default; tests/fuzz/corpus/), options (the render command's options and names;
-# tests/fuzz/corpus_options/) or checkpoint (a checkpoint to resume; tests/fuzz/corpus_checkpoint/).
+# tests/fuzz/corpus_options/), checkpoint (a checkpoint to resume; tests/fuzz/corpus_checkpoint/)
+# or weather (an EPW weather file, its hours' sun and sky; tests/fuzz/corpus_weather/).
 #
 #   scripts/fuzz.sh                    run for 60 seconds
 #   scripts/fuzz.sh --time 600         run for 600 seconds
@@ -26,14 +27,15 @@ while (($#)); do
     --runs) limit=(-runs="$2"); shift 2 ;;
     --target) target="$2"; shift 2 ;;
     --) shift; break ;;
-    *) echo "fuzz.sh: unknown argument '$1' (--target scene|options|checkpoint, --time SECONDS, --runs N, -- libFuzzer options)" >&2; exit 2 ;;
+    *) echo "fuzz.sh: unknown argument '$1' (--target scene|options|checkpoint|weather, --time SECONDS, --runs N, -- libFuzzer options)" >&2; exit 2 ;;
   esac
 done
 case "$target" in
   scene) binary=fuzz_scene_load; seeds=corpus; extra=(-dict=../tests/fuzz/gltf.dict) ;;
   options) binary=fuzz_render_options; seeds=corpus_options; extra=() ;;
   checkpoint) binary=fuzz_checkpoint; seeds=corpus_checkpoint; extra=() ;;
-  *) echo "fuzz.sh: --target is scene, options or checkpoint, not '$target'" >&2; exit 2 ;;
+  weather) binary=fuzz_weather; seeds=corpus_weather; extra=() ;;
+  *) echo "fuzz.sh: --target is scene, options, checkpoint or weather, not '$target'" >&2; exit 2 ;;
 esac
 
 for p in clang-14 libclang-rt-14-dev; do

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <memory>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +24,7 @@
 #include "render/render_options.h"
 #include "util/error.h"
 #include "util/fnv.h"
+#include "util/stop_signals.h"
 
 namespace fen {
 
@@ -90,12 +93,17 @@ std::vector<Job> readJobs(const std::string& path)
     return jobs;
 }
 
-// A job's key: fenestra's build, its arguments, and every file it read, by path and bytes. Empty
-// when a file it read is gone.
-std::string jobKey(const Job& job, const std::vector<std::string>& inputs)
+// A job's key: fenestra's build, the device asked for, the kernel environment, the job's arguments,
+// and every file it read, by path and bytes. Empty (matching nothing) when a file it read is gone.
+std::string jobKey(const Job& job, const std::string& device, const std::vector<std::string>& inputs)
 {
     Fnv f;
     f.text(buildId());
+    f.text(device);
+    for (const char* env : {"FEN_KERNEL_DIR", "FEN_LOCAL_SIZE"}) {
+        const char* v = std::getenv(env);
+        f.text(v ? v : "");
+    }
     for (const std::string& a : job.args)
         f.text(a);
     for (const std::string& p : inputs) {
@@ -110,6 +118,23 @@ std::string jobKey(const Job& job, const std::vector<std::string>& inputs)
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
     return hex;
+}
+
+// A state entry that says the job finished: {"status": "done", "key": K, "inputs": [...], "json": P}.
+// Anything else (an older or edited file) says nothing: the job runs.
+bool finishedEntry(const nlohmann::json& e, std::string* key, std::vector<std::string>* inputs, std::string* json)
+{
+    if (!e.is_object() || e.value("status", nlohmann::json()) != "done" || !e.contains("key") || !e["key"].is_string() ||
+        !e.contains("json") || !e["json"].is_string() || !e.contains("inputs") || !e["inputs"].is_array())
+        return false;
+    for (const auto& i : e["inputs"]) {
+        if (!i.is_string())
+            return false;
+        inputs->push_back(i.get<std::string>());
+    }
+    *key = e["key"].get<std::string>();
+    *json = e["json"].get<std::string>();
+    return !key->empty();
 }
 
 // Next to the jobs file: JOBS.state.json, JOBS.summary.json, JOBS.summary.csv.
@@ -153,14 +178,17 @@ std::string csvField(const std::string& s)
 }
 
 struct Outcome {
-    std::string status;  // done, skipped, failed, stopped
+    std::string status;  // done, skipped, failed, stopped, not run
     double seconds = 0.0;
     std::string json, error;
     nlohmann::json figures;  // paths, mean luminance, noise (from the job's JSON output)
+    std::vector<std::string> inputs;  // the files it read
 };
 
-// One job: parsed as `fenestra render` parses its arguments, run on the shared context.
-Outcome runJob(const Job& job, ocl::Context& ctx, std::vector<std::string>* inputs)
+// One job: parsed as `fenestra render` parses its arguments, run on the shared context. Its key is
+// taken from its inputs as they were read, before it renders (a file edited meanwhile makes the
+// next run run it again).
+Outcome runJob(const Job& job, ocl::Context& ctx, const std::string& device, std::string* key)
 {
     Outcome o;
     RenderOptions opt;
@@ -169,6 +197,8 @@ Outcome runJob(const Job& job, ocl::Context& ctx, std::vector<std::string>* inpu
     std::vector<std::string> args(job.args.rbegin(), job.args.rend());  // CLI11 takes them reversed
     try {
         app.parse(args);
+    } catch (const CLI::CallForHelp&) {
+        throw Error("--help: a job renders; see fenestra render --help");
     } catch (const CLI::ParseError& e) {
         throw Error(cat(printable(e.what(), 400), " (the arguments of `fenestra render`)"));
     }
@@ -177,8 +207,11 @@ Outcome runJob(const Job& job, ocl::Context& ctx, std::vector<std::string>* inpu
     validateRenderOptions(opt);
     RenderHooks hooks;
     hooks.context = &ctx;
-    hooks.inputs = inputs;
-    hooks.jsonPath = &o.json;
+    hooks.onInputs = [&](const std::vector<std::string>& inputs, const std::string& json) {
+        o.inputs = inputs;
+        o.json = json;
+        *key = jobKey(job, device, inputs);
+    };
     const int status = runRender(opt, hooks);
     o.status = status == 130 ? "stopped" : "done";
     return o;
@@ -197,75 +230,92 @@ int runBatch(const BatchOptions& options)
         state = nlohmann::json::parse(slurpFile(statePath, "the batch's state"), nullptr, false);
         if (!state.is_object() || !state.contains("jobs") || !state["jobs"].is_object())
             throw Error(cat(printable(statePath), ": not a batch state file (remove it to run every job again)"));
+        // entries are checked where they are read (finishedEntry): one that is not what a batch
+        // writes only makes its job run
     } else {
         state["jobs"] = nlohmann::json::object();
     }
-    ocl::Context ctx(ocl::selectDevice(options.device));
+    const StopSignals signals;  // one for the whole batch: a stop between jobs is seen too
+    auto ctx = std::make_unique<ocl::Context>(ocl::selectDevice(options.device));
     std::fprintf(stderr, "fenestra: batch %s: %zu jobs on %s\n", printable(options.jobsPath).c_str(), jobs.size(),
-                 ctx.info().label().c_str());
+                 ctx->info().label().c_str());
 
     std::vector<Outcome> outcomes;
     int failed = 0;
     bool stopped = false;
-    for (std::size_t i = 0; i < jobs.size() && !stopped; ++i) {
+    for (std::size_t i = 0; i < jobs.size() && !(stopped = StopSignals::requested()); ++i) {
         const Job& job = jobs[i];
         const auto t0 = std::chrono::steady_clock::now();
         Outcome o;
-        // Skipped: the same build, arguments and input bytes as when it finished, its JSON still there.
-        const nlohmann::json* before = state["jobs"].contains(job.name) ? &state["jobs"][job.name] : nullptr;
-        if (!options.rerun && before && before->value("status", "") == "done") {
-            const std::vector<std::string> inputs = before->value("inputs", std::vector<std::string>{});
-            const std::string json = before->value("json", "");
-            if (!json.empty() && std::filesystem::exists(json) && jobKey(job, inputs) == before->value("key", "")) {
-                o.status = "skipped";
-                o.json = json;
-            }
+        // Skipped: the same build, device, arguments and input bytes as when it finished, its JSON there.
+        std::string key, json;
+        std::vector<std::string> inputs;
+        if (!options.rerun && state["jobs"].contains(job.name) &&
+            finishedEntry(state["jobs"][job.name], &key, &inputs, &json) && std::filesystem::exists(json) &&
+            jobKey(job, options.device, inputs) == key) {
+            o.status = "skipped";
+            o.json = json;
         }
         std::fprintf(stderr, "fenestra: batch [%zu/%zu] %s: %s\n", i + 1, jobs.size(), job.name.c_str(),
                      o.status == "skipped" ? "unchanged since it finished, skipped" : "running");
         if (o.status.empty()) {
-            std::vector<std::string> inputs;
+            key.clear();
             try {
-                o = runJob(job, ctx, &inputs);
+                o = runJob(job, *ctx, options.device, &key);
             } catch (const Error& e) {
                 o.status = "failed", o.error = e.what();
             } catch (const cl::Error& e) {
                 o.status = "failed", o.error = "OpenCL: " + ocl::describe(e);
+                // A device error can leave the queue unusable: the next job gets a new context.
+                try {
+                    ctx = std::make_unique<ocl::Context>(ocl::selectDevice(options.device));
+                } catch (const std::exception&) {
+                }
             } catch (const std::bad_alloc&) {
                 o.status = "failed", o.error = "out of host memory";
+            } catch (const std::exception& e) {
+                o.status = "failed", o.error = e.what();
             }
             o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             if (o.status == "failed") {
                 ++failed;
                 std::fprintf(stderr, "fenestra: batch [%zu/%zu] %s: failed: %s\n", i + 1, jobs.size(),
                              job.name.c_str(), printable(o.error, 4000).c_str());
-                state["jobs"].erase(job.name);
-            } else if (o.status == "stopped") {
-                stopped = true;
-                state["jobs"].erase(job.name);
-            } else {
-                state["jobs"][job.name] = {{"status", "done"}, {"key", jobKey(job, inputs)}, {"inputs", inputs},
-                                           {"json", o.json}};
             }
+            if (o.status == "done")
+                state["jobs"][job.name] = {{"status", "done"}, {"key", key}, {"inputs", o.inputs}, {"json", o.json}};
+            else
+                state["jobs"].erase(job.name);
             makeUtf8(state);
             writeText(statePath, state.dump(1) + "\n");
         }
-        if (!o.json.empty() && (o.status == "done" || o.status == "skipped")) {
-            const nlohmann::json r = nlohmann::json::parse(slurpFile(o.json, "a job's JSON output"), nullptr, false);
-            if (r.is_object())
-                o.figures = {{"paths", r.value("paths", 0ull)},
-                             {"mean_luminance_cd_m2", r.value("mean_luminance_cd_m2", 0.0)},
-                             {"noise_std_err_cd_m2", r.contains("noise_std_err_cd_m2") ? r["noise_std_err_cd_m2"]
-                                                                                         : nlohmann::json(nullptr)}};
+        if (!o.json.empty() && (o.status == "done" || o.status == "skipped" || o.status == "stopped")) {
+            std::ifstream in(o.json, std::ios::binary);
+            std::ostringstream text;
+            text << in.rdbuf();
+            const nlohmann::json r = nlohmann::json::parse(text.str(), nullptr, false);
+            if (r.is_object() && r.contains("paths") && r["paths"].is_number_unsigned() &&
+                r.contains("mean_luminance_cd_m2") && r["mean_luminance_cd_m2"].is_number())
+                o.figures = {{"paths", r["paths"].get<unsigned long long>()},
+                             {"mean_luminance_cd_m2", r["mean_luminance_cd_m2"].get<double>()},
+                             {"noise_std_err_cd_m2", r.contains("noise_std_err_cd_m2") && r["noise_std_err_cd_m2"].is_number()
+                                                         ? r["noise_std_err_cd_m2"]
+                                                         : nlohmann::json(nullptr)}};
         }
         outcomes.push_back(o);
+        if (o.status == "stopped")
+            stopped = true;
     }
 
     // The summary: every job, run or not.
     nlohmann::json list = nlohmann::json::array();
     std::string csv = "name,status,seconds,paths,mean_luminance_cd_m2,noise_std_err_cd_m2,json,error\n";
     for (std::size_t i = 0; i < jobs.size(); ++i) {
-        const Outcome o = i < outcomes.size() ? outcomes[i] : Outcome{"not run", 0.0, "", "", nullptr};
+        Outcome o;
+        if (i < outcomes.size())
+            o = outcomes[i];
+        else
+            o.status = "not run";
         nlohmann::json e = {{"name", jobs[i].name}, {"status", o.status}, {"seconds", o.seconds},
                             {"json", o.json.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.json)},
                             {"error", o.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.error)}};

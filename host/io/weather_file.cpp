@@ -4,7 +4,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "util/error.h"
 
@@ -59,12 +61,12 @@ public:
             fail(field, index, cat("must be an integer ", lo, "..", hi));
         return static_cast<int>(v);
     }
-    // An irradiance: >= 0 W/m^2 (EPW's missing value 9999 is an error: no daylight without it).
-    double irradiance(std::size_t index, const char* field) const
+    // An irradiance: >= 0 W/m^2, or missing (9999).
+    std::optional<double> irradiance(std::size_t index, const char* field) const
     {
         const double v = number(index, field);
         if (v >= 9999.0)
-            fail(field, index, "missing (9999): the hour's daylight is not in the file");
+            return std::nullopt;
         if (v < 0.0) {
             if (v > -1.0)  // "-0.00" and rounding below zero in converted files
                 return 0.0;
@@ -109,9 +111,23 @@ const WeatherRecord& WeatherFile::at(int month, int day, int hour, const std::st
 
 WeatherFile readWeatherFile(const std::string& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw Error(cat(printable(path), ": ", std::filesystem::exists(path, ec) ? "not a regular file" : "cannot open the weather file",
+                        " (a weather file is an EPW file)"));
+    if (std::filesystem::file_size(path, ec) > (std::uintmax_t{256} << 20))
+        throw Error(cat(printable(path), ": larger than 256 MiB: not an EPW weather file"));
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
         throw Error(cat(printable(path), ": cannot open the weather file"));
+    std::ostringstream text;
+    text << file.rdbuf();
+    return readWeatherText(text.str(), path);
+}
+
+WeatherFile readWeatherText(const std::string& text, const std::string& path)
+{
+    std::istringstream in(text);
     WeatherFile w;
     w.path = path;
     std::string line;
@@ -147,9 +163,11 @@ WeatherFile readWeatherFile(const std::string& path)
         rec.month = r.integer(1, "month", 1, 12);
         rec.day = r.integer(2, "day", 1, rec.month == 2 ? 29 : kDaysIn[rec.month - 1]);
         rec.hour = r.integer(3, "hour", 1, 24);
-        rec.dewPoint_C = r.number(7, "dew point temperature");
-        if (rec.dewPoint_C < -90.0 || rec.dewPoint_C > 70.0)
-            r.fail("dew point temperature", 7, "must be in -90..70 deg C");
+        const double dew = r.number(7, "dew point temperature");
+        if (dew < 99.0 && (dew < -90.0 || dew > 70.0))
+            r.fail("dew point temperature", 7, "must be in -90..70 deg C (99.9: missing)");
+        if (dew < 99.0)
+            rec.dewPoint_C = dew;
         rec.globalHorizontal_W_m2 = r.irradiance(13, "global horizontal irradiance");
         rec.directNormal_W_m2 = r.irradiance(14, "direct normal irradiance");
         rec.diffuseHorizontal_W_m2 = r.irradiance(15, "diffuse horizontal irradiance");

@@ -41,55 +41,12 @@
 #include "sky/sky_spec.h"
 #include "sky/solar_position.h"
 #include "util/error.h"
+#include "util/stop_signals.h"
 
 namespace fen {
 
 namespace {
 
-// Ctrl-C, SIGTERM or SIGHUP (a closed terminal or ssh session): the first asks the render to stop
-// within a launch -- the paths in flight finish, none start -- and write what it has; a second one
-// ends the process at once (the default action). Only async-signal-safe calls here. SIGPIPE is
-// ignored meanwhile: with the terminal gone, a progress line must not kill the render.
-std::atomic<bool> gStop{false};
-
-extern "C" void onStopSignal(int sig)
-{
-    if (gStop.exchange(true)) {
-        std::signal(sig, SIG_DFL);
-        std::raise(sig);
-        return;
-    }
-    static const char msg[] =
-        "\nfenestra: interrupted: finishing the paths in flight and writing the image (again to quit now)\n";
-    const ssize_t ignored = ::write(STDERR_FILENO, msg, sizeof msg - 1);
-    (void)ignored;
-}
-
-// Installs the handlers for the render's lifetime.
-class StopSignals {
-public:
-    StopSignals()
-    {
-        gStop = false;
-        oldInt_ = std::signal(SIGINT, onStopSignal);
-        oldTerm_ = std::signal(SIGTERM, onStopSignal);
-        oldHup_ = std::signal(SIGHUP, onStopSignal);
-        oldPipe_ = std::signal(SIGPIPE, SIG_IGN);
-    }
-    ~StopSignals()
-    {
-        std::signal(SIGINT, oldInt_);
-        std::signal(SIGTERM, oldTerm_);
-        std::signal(SIGHUP, oldHup_);
-        std::signal(SIGPIPE, oldPipe_);
-    }
-
-private:
-    void (*oldInt_)(int);
-    void (*oldTerm_)(int);
-    void (*oldHup_)(int);
-    void (*oldPipe_)(int);
-};
 
 // The sun and the sky rendered (after the command line's changes), for the JSON.
 nlohmann::json sunJson(const Sun& sun)
@@ -267,17 +224,17 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     if (!hooks.context)
         ownContext.emplace(ocl::selectDevice(opt.device));
     ocl::Context& ctx = hooks.context ? *hooks.context : *ownContext;
-    if (hooks.inputs) {
-        *hooks.inputs = scene.files;
-        if (!referencePath.empty())
-            hooks.inputs->push_back(referencePath);
+    if (hooks.onInputs) {
+        std::vector<std::string> read = scene.files;
+        for (const std::string* f : {&referencePath, &resumePath})
+            if (!f->empty())
+                read.push_back(*f);
         for (const std::string& f : opt.sensors.pointsFiles)
-            hooks.inputs->push_back(f);
+            read.push_back(f);
         if (opt.skySun.weather)
-            hooks.inputs->push_back(*opt.skySun.weather);
+            read.push_back(*opt.skySun.weather);
+        hooks.onInputs(read, jsonPath);
     }
-    if (hooks.jsonPath)
-        *hooks.jsonPath = jsonPath;
     // What the film and the path pool will take, against what the device and the host have.
     checkMemoryNeeds(renderMemoryNeeds(width, height,
                                        opt.poolSize ? static_cast<std::uint64_t>(*opt.poolSize)
@@ -330,8 +287,8 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
         progress.push_back(e);
     };
     settings.carry = &progress;  // a resumed render's records start with those before it
-    const StopSignals signals;
-    settings.stop = &gStop;
+    const StopSignals signals;  // Ctrl-C asks for a graceful stop (util/stop_signals.h)
+    settings.stop = StopSignals::flag();
     Renderer renderer(ctx, scene, sky, camera, width, height, settings);
     // Warned once the settings are known to be valid, so that an error stays one line.
     if (settings.paths > 0 && settings.paths % static_cast<std::uint64_t>(settings.batches) != 0)

@@ -1,6 +1,7 @@
 // render_cmd.h — `fenestra render`: runs a render with the options of render_options.h.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,10 +16,11 @@ class Context;
 // What a caller running many renders in one process (`fenestra batch`) shares with a render and
 // learns from it. All optional.
 struct RenderHooks {
-    ocl::Context* context = nullptr;          // the device's context, made once (else the render makes its own)
-    std::vector<std::string>* inputs = nullptr;  // receives every file the render read (scene, its buffers
-                                                 // and textures, the reference, sensor points, weather)
-    std::string* jsonPath = nullptr;          // receives the JSON output's path
+    ocl::Context* context = nullptr;  // the device's context, made once (else the render makes its own)
+    // Called once the inputs are read and before anything is rendered, with every file the render
+    // read (scene, its buffers and textures, the reference, sensor points, weather, the checkpoint
+    // it resumes) and its JSON output's path.
+    std::function<void(const std::vector<std::string>& inputs, const std::string& jsonPath)> onInputs;
 };
 
 // Returns the exit status: 0, or 130 when a signal stopped the render early (its outputs are

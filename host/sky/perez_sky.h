@@ -13,7 +13,7 @@
 // x = x1 + x2 Z + Delta (x3 + x4 Z) for x = a..e, except c and d in the first (overcast) bin,
 //   c = exp((Delta (c1 + c2 Z))^c3) - c4,   d = -exp(Delta (d1 + d2 Z)) + d3 + Delta d4,
 // with Delta raised to at least 0.2 for 1.065 < epsilon < 2.8 (the paper's correction). The 160
-// coefficients are the paper's Table 1; tests/host/perez_sky_test.cpp checks a..e against Radiance's
+// coefficients are the paper's Table 1; tests/host/weather_sky_test.cpp checks a..e against Radiance's
 // gendaylit for the same (sun, epsilon, Delta) over all eight bins.
 //
 // The formula is the CIE standard general sky's (cie_sky.h) with another indicatrix offset: with

@@ -94,6 +94,53 @@ TEST(CliBatch, JobsWriteTheirRendersBytesAndAFailureDoesNotStopTheRest)
     EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "done", "failed", "done"})) << all.err;
 }
 
+TEST(CliBatch, AStopEndsTheJobInFlightAndRunsNoMore)
+{
+    // Three long jobs; SIGINT after 3 s: the first stops as a render does (its outputs written,
+    // exit 130), the others do not start, and the summary says so.
+    const std::string dir = test::tempDir("cli-batch-stop");
+    const std::string scene = std::string(FEN_SCENES_DIR) + "/room.gltf";
+    std::string text = "{\"jobs\": [";
+    for (int i = 0; i < 3; ++i)
+        text += std::string(i ? ", " : "") + "{\"name\": \"j" + std::to_string(i) + "\", \"render\": [\"" + scene +
+                "\", \"--time\", \"60\", \"--width\", \"32\", \"--no-progress\", \"--out\", \"" + dir + "/j" +
+                std::to_string(i) + ".exr\"]}";
+    std::ofstream(dir + "/jobs.json") << text << "]}";
+    const std::string cmd = std::string(FENESTRA_BIN) + " batch " + dir + "/jobs.json 2>" + dir +
+                            "/err & pid=$!; sleep 3; kill -INT $pid; wait $pid; echo $? >" + dir + "/status";
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
+    EXPECT_EQ(std::stoi(slurp(dir + "/status")), 130) << slurp(dir + "/err");
+    const auto s = nlohmann::json::parse(slurp(dir + "/jobs.summary.json"));
+    ASSERT_EQ(s["jobs"].size(), 3u);
+    EXPECT_EQ(s["jobs"][0]["status"], "stopped");
+    EXPECT_EQ(s["jobs"][1]["status"], "not run");
+    EXPECT_EQ(s["jobs"][2]["status"], "not run");
+    EXPECT_TRUE(nlohmann::json::parse(slurp(dir + "/j0.json"))["interrupted"].get<bool>());
+    EXPECT_FALSE(std::filesystem::exists(dir + "/j1.json"));
+}
+
+TEST(CliBatch, AChangedWeatherFileRunsItsJobAgain)
+{
+    // The key covers every file a job read, not only its scene: the weather file here.
+    const std::string dir = test::tempDir("cli-batch-weather");
+    const std::string epw = dir + "/year.epw";
+    std::filesystem::copy_file(std::string(FEN_SCENES_DIR) + "/weather/tmy_45.000_8.000_2005_2016.epw", epw,
+                               std::filesystem::copy_options::overwrite_existing);
+    std::ofstream(dir + "/jobs.json") << "{\"jobs\": [{\"name\": \"w\", \"render\": " +
+                                             quoted({std::string(FEN_SCENES_DIR) + "/room.gltf", "--weather", epw,
+                                                     "--weather-hour", "06-21:13", "--paths", "100000", "--width",
+                                                     "32", "--no-progress", "--out", dir + "/w.exr"}) +
+                                             "}]}";
+    auto status = [&] { return nlohmann::json::parse(slurp(dir + "/jobs.summary.json"))["jobs"][0]["status"]; };
+    ASSERT_EQ(run("batch " + dir + "/jobs.json").status, 0);
+    EXPECT_EQ(status(), "done");
+    ASSERT_EQ(run("batch " + dir + "/jobs.json").status, 0);
+    EXPECT_EQ(status(), "skipped");
+    std::ofstream(epw, std::ios::app) << "\n";
+    ASSERT_EQ(run("batch " + dir + "/jobs.json").status, 0);
+    EXPECT_EQ(status(), "done");
+}
+
 TEST(CliBatch, BrokenJobsFilesAreOneLineErrorsNamingTheKey)
 {
     const std::string dir = test::tempDir("cli-batch-bad");

@@ -169,7 +169,8 @@ TEST(WeatherFile, ReadsTheShippedYear)
     EXPECT_DOUBLE_EQ(w.timeZoneHours, 1.0);
     const WeatherRecord& r = w.at(6, 21, 13, "test");
     EXPECT_EQ(r.line, 8 + dayOfYear(6, 21) * 24 - 24 + 13);
-    EXPECT_GT(r.globalHorizontal_W_m2, 0.0);
+    ASSERT_TRUE(r.globalHorizontal_W_m2.has_value());
+    EXPECT_GT(*r.globalHorizontal_W_m2, 0.0);
     EXPECT_FALSE(r.diffuseHorizontal_lux.has_value());  // this file gives irradiance only
     EXPECT_THROW(w.at(2, 30, 1, "--weather-hour"), Error);
 }
@@ -196,10 +197,10 @@ TEST(WeatherFile, ShippedIrradianceFollowsTheSunNearTheConventionsTime)
             t.hour = minutes / 60, t.minute = minutes % 60;
             t.utcOffsetMinutes = 60;
             const SolarPosition p = solarPosition(w.latitudeDeg, w.longitudeDeg, t);
-            if (p.altitudeDeg < 15.0 || r.globalHorizontal_W_m2 < 50.0)
+            if (p.altitudeDeg < 15.0 || !r.globalHorizontal_W_m2 || *r.globalHorizontal_W_m2 < 50.0)
                 continue;
-            const double ghi = r.directNormal_W_m2 * std::sin(p.altitudeDeg * M_PI / 180.0) + r.diffuseHorizontal_W_m2;
-            m.push_back(std::abs(ghi - r.globalHorizontal_W_m2) / r.globalHorizontal_W_m2);
+            const double ghi = *r.directNormal_W_m2 * std::sin(p.altitudeDeg * M_PI / 180.0) + *r.diffuseHorizontal_W_m2;
+            m.push_back(std::abs(ghi - *r.globalHorizontal_W_m2) / *r.globalHorizontal_W_m2);
         }
         std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
         return m[m.size() / 2];
@@ -260,7 +261,22 @@ TEST(WeatherFile, BrokenFilesAreOneLineErrorsNamingTheLineAndField)
     expectError(write("notepw.epw", {"hello,world"}), ":1: expected the LOCATION line");
     expectError(write("lat.epw", edit(1, 6, "north")), ":1: latitude 'north': not a number");
     expectError(write("dni.epw", edit(20, 14, "abc")), ":20: direct normal irradiance 'abc': not a number");
-    expectError(write("missing.epw", edit(21, 15, "9999")), ":21: diffuse horizontal irradiance '9999': missing");
+    // A missing value (9999) is read as missing; only an hour that needs it refuses it.
+    {
+        const WeatherFile w = readWeatherFile(write("missing.epw", edit(21, 15, "9999")));
+        EXPECT_FALSE(w.records[12].diffuseHorizontal_W_m2.has_value());
+        EXPECT_TRUE(w.records[11].diffuseHorizontal_W_m2.has_value());
+        try {
+            hourSky(w, w.records[12], "--weather");
+            ADD_FAILURE() << "a missing irradiance made a sky";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(":21 (1-1 hour 13): the diffuse horizontal irradiance is missing"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+    expectError(write("negative.epw", edit(21, 15, "-20")), ":21: diffuse horizontal irradiance '-20': negative");
+    expectError(dir, "not a regular file");
     expectError(write("month.epw", edit(22, 1, "13")), ":22: month '13': must be an integer 1..12");
     expectError(write("day.epw", edit(22, 2, "32")), ":22: day '32': must be an integer 1..31");
     expectError(write("hour.epw", edit(23, 3, "0")), ":23: hour '0': must be an integer 1..24");
@@ -285,11 +301,11 @@ TEST(WeatherSky, AnHoursSunAndSky)
     EXPECT_FALSE(h.illuminanceFromFile);
     const WeatherRecord& r = w.at(6, 21, 13, "test");
     // Efficacies of daylight: 90-150 lm/W for both parts.
-    EXPECT_GT(h.diffuseHorizontal_lux, 90.0 * r.diffuseHorizontal_W_m2);
-    EXPECT_LT(h.diffuseHorizontal_lux, 150.0 * r.diffuseHorizontal_W_m2);
-    if (r.directNormal_W_m2 > 0.0) {
-        EXPECT_GT(h.sunNormal_lux, 70.0 * r.directNormal_W_m2);
-        EXPECT_LT(h.sunNormal_lux, 120.0 * r.directNormal_W_m2);
+    EXPECT_GT(h.diffuseHorizontal_lux, 90.0 * *r.diffuseHorizontal_W_m2);
+    EXPECT_LT(h.diffuseHorizontal_lux, 150.0 * *r.diffuseHorizontal_W_m2);
+    if (*r.directNormal_W_m2 > 0.0) {
+        EXPECT_GT(h.sunNormal_lux, 70.0 * *r.directNormal_W_m2);
+        EXPECT_LT(h.sunNormal_lux, 120.0 * *r.directNormal_W_m2);
     }
     // At night: a one-line error naming the file, the line and the hour.
     try {
@@ -337,7 +353,7 @@ TEST(WeatherSky, HourIsParsedOrRefused)
     EXPECT_EQ(m, 6);
     EXPECT_EQ(d, 21);
     EXPECT_EQ(h, 13);
-    for (const char* bad : {"6/21 13", "06-21:0", "06-21:25", "13-01:10", "06-21:13x", ""})
+    for (const char* bad : {"6/21 13", "06-21:00", "06-21:25", "13-01:10", "06-21:13x", "", " 6-21:13", "6-1:1", "+6-21:13"})
         EXPECT_THROW(parseWeatherHour(bad, "--weather-hour", &m, &d, &h), Error) << bad;
 }
 
