@@ -20,6 +20,7 @@
 #include "cl/device.h"
 #include "io/json_text.h"
 #include "render/checkpoint.h"
+#include "render/device_scene.h"
 #include "render/render_cmd.h"
 #include "render/render_options.h"
 #include "util/error.h"
@@ -188,7 +189,8 @@ struct Outcome {
 // One job: parsed as `fenestra render` parses its arguments, run on the shared context. Its key is
 // taken from its inputs as they were read, before it renders (a file edited meanwhile makes the
 // next run run it again).
-Outcome runJob(const Job& job, ocl::Context& ctx, const std::string& device, std::string* key)
+Outcome runJob(const Job& job, ocl::Context& ctx, DeviceSceneCache& scenes, const std::string& device,
+               std::string* key)
 {
     Outcome o;
     RenderOptions opt;
@@ -207,6 +209,7 @@ Outcome runJob(const Job& job, ocl::Context& ctx, const std::string& device, std
     validateRenderOptions(opt);
     RenderHooks hooks;
     hooks.context = &ctx;
+    hooks.sceneCache = &scenes;
     hooks.onInputs = [&](const std::vector<std::string>& inputs, const std::string& json) {
         o.inputs = inputs;
         o.json = json;
@@ -237,6 +240,7 @@ int runBatch(const BatchOptions& options)
     }
     const StopSignals signals;  // one for the whole batch: a stop between jobs is seen too
     auto ctx = std::make_unique<ocl::Context>(ocl::selectDevice(options.device));
+    DeviceSceneCache scenes;  // a scene's BVH and buffers, kept while its jobs follow one another
     std::fprintf(stderr, "fenestra: batch %s: %zu jobs on %s\n", printable(options.jobsPath).c_str(), jobs.size(),
                  ctx->info().label().c_str());
 
@@ -261,13 +265,15 @@ int runBatch(const BatchOptions& options)
         if (o.status.empty()) {
             key.clear();
             try {
-                o = runJob(job, *ctx, options.device, &key);
+                o = runJob(job, *ctx, scenes, options.device, &key);
             } catch (const Error& e) {
                 o.status = "failed", o.error = e.what();
             } catch (const cl::Error& e) {
                 o.status = "failed", o.error = "OpenCL: " + ocl::describe(e);
-                // A device error can leave the queue unusable: the next job gets a new context.
+                // A device error can leave the queue unusable: the next job gets a new context
+                // (and the scene cache, whose buffers were the old context's, starts again).
                 try {
+                    scenes = DeviceSceneCache();
                     ctx = std::make_unique<ocl::Context>(ocl::selectDevice(options.device));
                 } catch (const std::exception&) {
                 }

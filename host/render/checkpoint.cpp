@@ -83,7 +83,11 @@ std::string buildId()
     return id;
 }
 
-std::uint64_t sceneHash(const Scene& s)
+namespace {
+
+// Geometry, materials, textures, texture coordinates, node names and portal marks: what a
+// DeviceScene holds (and the portals, which a render also reads from the scene).
+Fnv geometryFnv(const Scene& s)
 {
     Fnv f;
     f.value(s.triangles.size());
@@ -117,6 +121,19 @@ std::uint64_t sceneHash(const Scene& s)
         f.text(s.nodeNames[i]);
         f.value(i < s.nodePortal.size() ? static_cast<int>(s.nodePortal[i]) : -1);
     }
+    return f;
+}
+
+}  // namespace
+
+std::uint64_t geometryHash(const Scene& s)
+{
+    return geometryFnv(s).h;
+}
+
+std::uint64_t sceneHash(const Scene& s)
+{
+    Fnv f = geometryFnv(s);  // then the light: the same sequence of values as one pass over both
     f.value(s.sun.present);
     f.value(s.sun.travelDirection);
     f.value(s.sun.illuminanceRgb_lux);

@@ -34,6 +34,8 @@ std::string buildId();
 
 // A hash of everything in the scene that light transport reads.
 std::uint64_t sceneHash(const Scene& scene);
+// ... of its geometry, materials and textures alone (what a DeviceScene holds; not its sun or sky).
+std::uint64_t geometryHash(const Scene& scene);
 
 void writeCheckpoint(const std::string& path, const nlohmann::json& fingerprint, const std::string& payload);
 

@@ -1,6 +1,8 @@
 // device_scene.cpp — uploading a Scene (device_scene.h).
 #include "render/device_scene.h"
 
+#include "render/checkpoint.h"
+
 #include <cmath>
 
 #include "shared/fen_render.h"
@@ -112,6 +114,19 @@ std::vector<std::string> DeviceScene::defines() const
     if (hasTextures_)
         d.push_back("FEN_HAS_TEXTURES=1");
     return d;
+}
+
+std::shared_ptr<const DeviceScene> DeviceSceneCache::get(ocl::Context& ctx, const Scene& scene, int bvhWidth,
+                                                         bool* reused)
+{
+    const std::uint64_t hash = geometryHash(scene);
+    *reused = scene_ && ctx_ == &ctx && hash_ == hash && width_ == bvhWidth;
+    if (!*reused) {
+        scene_.reset();  // the old one's buffers go before the new one's are made
+        scene_ = std::make_shared<const DeviceScene>(ctx, scene, bvhWidth);
+        ctx_ = &ctx, hash_ = hash, width_ = bvhWidth;
+    }
+    return scene_;
 }
 
 }  // namespace fen

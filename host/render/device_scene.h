@@ -3,6 +3,7 @@
 // Stages read a hit triangle's vertices from its BVH packet, so no other copy of the geometry.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,6 +44,22 @@ private:
     cl::Buffer materials_, primMaterial_, primUv_, texels_;
     bool hasGlass_ = false, hasTextures_ = false;
     double bvhSeconds_ = 0.0;
+};
+
+// Device scenes kept for the renders of one process (`fenestra batch`): a render of the same
+// geometry and materials, on the same context and BVH layout, reuses the BVH and buffers the last
+// one built instead of building them again (the scene's sun and sky are not in them). Holds one
+// scene: batches list a scene's jobs together.
+class DeviceSceneCache {
+public:
+    // The device scene for `scene` at `bvhWidth` on `ctx`; *reused tells whether it was built before.
+    std::shared_ptr<const DeviceScene> get(ocl::Context& ctx, const Scene& scene, int bvhWidth, bool* reused);
+
+private:
+    const ocl::Context* ctx_ = nullptr;
+    std::uint64_t hash_ = 0;
+    int width_ = 0;
+    std::shared_ptr<const DeviceScene> scene_;
 };
 
 }  // namespace fen

@@ -267,6 +267,7 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     settings.resumePath = resumePath;
     settings.checkpointSeconds = opt.checkpointSeconds;
     settings.checkpointBatches = opt.checkpointBatches;
+    settings.sceneCache = hooks.sceneCache;
     // Error against time, batch by batch (what `scripts/compare.py` charts): the ROI's mean, the
     // noise estimate, and with a reference the RMSE and the mean's bias.
     nlohmann::json progress = nlohmann::json::array();
@@ -394,8 +395,9 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     j["seconds"] = {{"total", totalSeconds},
                     {"render", r.renderSeconds},
                     {"calibration", r.calibrationSeconds},
-                    {"bvh_build", r.bvhSeconds},
+                    {"bvh_build", r.bvhSeconds},  // 0 when an earlier job of a batch built it (bvh_reused)
                     {"kernel_build", r.kernelBuildSeconds}};
+    j["bvh_reused"] = r.bvhReused;
     j["rays_per_second"] = r.renderSeconds > 0.0 ? lightRays / r.renderSeconds : 0.0;
     j["paths_per_second"] = r.renderSeconds > 0.0 ? r.paths / r.renderSeconds : 0.0;
     j["roi"] = {roi.x0, roi.y0, roi.x1, roi.y1};

@@ -12,11 +12,13 @@ namespace fen {
 namespace ocl {
 class Context;
 }
+class DeviceSceneCache;
 
 // What a caller running many renders in one process (`fenestra batch`) shares with a render and
 // learns from it. All optional.
 struct RenderHooks {
     ocl::Context* context = nullptr;  // the device's context, made once (else the render makes its own)
+    DeviceSceneCache* sceneCache = nullptr;  // device scenes of earlier renders on that context
     // Called once the inputs are read and before anything is rendered, with every file the render
     // read (scene, its buffers and textures, the reference, sensor points, weather, the checkpoint
     // it resumes) and its JSON output's path.

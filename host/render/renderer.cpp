@@ -50,10 +50,22 @@ std::string millions(double v)
 
 }  // namespace
 
+// The scene on the device: from the caller's cache when it has one (a batch), else built here.
+std::shared_ptr<const DeviceScene> deviceSceneFor(ocl::Context& c, const Scene& s, const RenderSettings& st, bool* reused)
+{
+    const int width = st.bvhWidth > 0 ? st.bvhWidth : defaultBvhWidth(c.info().isGpu());
+    if (st.sceneCache)
+        return st.sceneCache->get(c, s, width, reused);
+    *reused = false;
+    return std::make_shared<const DeviceScene>(c, s, width);
+}
+
 struct Renderer::Impl {
     ocl::Context& ctx;
     RenderSettings settings;
-    DeviceScene scene;
+    bool sceneReused = false;
+    std::shared_ptr<const DeviceScene> sceneHolder;
+    const DeviceScene& scene;
     SkyTables skyTables;
     DeviceSky sky;
     Film film;
@@ -78,7 +90,7 @@ struct Renderer::Impl {
     Impl(ocl::Context& c, const Scene& s, const std::optional<Goniogram>& g, const CameraSpec& cam,
          int w, int h, const RenderSettings& st)
         : ctx(c), settings(withMethodDefaults(st)),
-          scene(c, s, st.bvhWidth > 0 ? st.bvhWidth : defaultBvhWidth(c.info().isGpu())),
+          sceneHolder(deviceSceneFor(c, s, st, &sceneReused)), scene(*sceneHolder),
           skyTables(makeSkyTables(g)), sky(c, skyTables),
           film(c, w, h, referenceLuminance(s, skyTables)),
           // illuminance ~ pi x luminance: the pixels' fixed-point range serves the cells too
@@ -409,7 +421,8 @@ struct Renderer::Impl {
     RenderResult render()
     {
         RenderResult r;
-        r.bvhSeconds = scene.bvhBuildSeconds();
+        r.bvhSeconds = sceneReused ? 0.0 : scene.bvhBuildSeconds();
+        r.bvhReused = sceneReused;
         r.kernelBuildSeconds = loop->kernelBuildSeconds();
         r.bvhWidth = scene.bvh().width();
         r.poolSize = pool;

@@ -36,6 +36,8 @@
 
 namespace fen {
 
+class DeviceSceneCache;
+
 class BatchStatistics;
 
 // After every counted batch: the statistics so far, for a progress record (error against time).
@@ -89,6 +91,9 @@ struct RenderSettings {
     double checkpointSeconds = 600.0;
     int checkpointBatches = 0;
     nlohmann::json* carry = nullptr;
+    // Renders of one process (`fenestra batch`): the device scene (BVH, materials, textures) of the
+    // same geometry on the same context is built once (render/device_scene.h).
+    DeviceSceneCache* sceneCache = nullptr;
 };
 
 struct RenderResult {
@@ -104,6 +109,7 @@ struct RenderResult {
     double renderSeconds = 0.0;       // the counted batches
     double calibrationSeconds = 0.0;  // --time only: the uncounted first batches
     double bvhSeconds = 0.0, kernelBuildSeconds = 0.0;
+    bool bvhReused = false;           // the device scene came from settings.sceneCache (bvhSeconds 0)
     int bvhWidth = 0;
     std::uint32_t poolSize = 0;
     KernelMode kernelMode = KernelMode::Wavefront;

@@ -1,5 +1,6 @@
 // batch_test.cpp — `fenestra batch` as a user runs it (host/batch/batch_cmd.h): a batch of mixed
-// jobs writes the same image bytes as the same jobs run one by one with `fenestra render`; a job
+// jobs writes the same image bytes as the same jobs run one by one with `fenestra render` (a job
+// of the same geometry as the one before reusing its BVH); a job
 // that fails is reported and the others go on; a rerun skips the jobs finished and unchanged, and
 // runs one again when a file it read changes; a broken jobs file is one line naming the key.
 #include <gtest/gtest.h>
@@ -66,6 +67,12 @@ TEST(CliBatch, JobsWriteTheirRendersBytesAndAFailureDoesNotStopTheRest)
     EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "done", "failed", "done"}));
     const std::string csv = slurp(dir + "/jobs.summary.csv");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << csv;
+
+    // The weather job renders the room the adaptive job did (another file, the same geometry): it
+    // reuses that job's BVH and buffers, and its image is still the render's own (below).
+    EXPECT_FALSE(nlohmann::json::parse(slurp(dir + "/batch_adaptive.json"))["bvh_reused"].get<bool>());
+    EXPECT_TRUE(nlohmann::json::parse(slurp(dir + "/batch_weather.json"))["bvh_reused"].get<bool>());
+    EXPECT_FALSE(nlohmann::json::parse(slurp(dir + "/batch_uniform.json"))["bvh_reused"].get<bool>());
 
     // The same jobs one by one: the same bytes.
     for (const auto& [name, args] : jobs) {
