@@ -186,6 +186,31 @@ struct Outcome {
     std::vector<std::string> inputs;  // the files it read
 };
 
+// What the summary shows of a job, from its JSON output: paths, the image's mean luminance and
+// noise (null with --no-image), and each sensor's mean illuminance with its standard error, least
+// and greatest cell and uniformity. Null when the output is not a render's JSON.
+nlohmann::json jobFigures(const nlohmann::json& r)
+{
+    if (!r.is_object() || !r.contains("paths") || !r["paths"].is_number_unsigned())
+        return nullptr;
+    const auto numberOrNull = [](const nlohmann::json& o, const char* key) {
+        return o.is_object() && o.contains(key) && o[key].is_number() ? o[key] : nlohmann::json(nullptr);
+    };
+    const bool image = !(r.contains("image") && r["image"] == false);  // --no-image: sensors alone
+    nlohmann::json f = {{"paths", r["paths"]},
+                        {"mean_luminance_cd_m2", image ? numberOrNull(r, "mean_luminance_cd_m2") : nullptr},
+                        {"noise_std_err_cd_m2", image ? numberOrNull(r, "noise_std_err_cd_m2") : nullptr},
+                        {"sensors", nlohmann::json::object()}};
+    if (r.contains("sensors") && r["sensors"].is_object())
+        for (const auto& [name, e] : r["sensors"].items()) {
+            nlohmann::json t = nlohmann::json::object();
+            for (const char* key : {"mean_lux", "mean_lux_std_err", "min_lux", "max_lux", "uniformity"})
+                t[key] = numberOrNull(e, key);
+            f["sensors"][name] = t;
+        }
+    return f;
+}
+
 // One job: parsed as `fenestra render` parses its arguments, run on the shared context. Its key is
 // taken from its inputs as they were read, before it renders (a file edited meanwhile makes the
 // next run run it again).
@@ -300,13 +325,7 @@ int runBatch(const BatchOptions& options)
             std::ostringstream text;
             text << in.rdbuf();
             const nlohmann::json r = nlohmann::json::parse(text.str(), nullptr, false);
-            if (r.is_object() && r.contains("paths") && r["paths"].is_number_unsigned() &&
-                r.contains("mean_luminance_cd_m2") && r["mean_luminance_cd_m2"].is_number())
-                o.figures = {{"paths", r["paths"].get<unsigned long long>()},
-                             {"mean_luminance_cd_m2", r["mean_luminance_cd_m2"].get<double>()},
-                             {"noise_std_err_cd_m2", r.contains("noise_std_err_cd_m2") && r["noise_std_err_cd_m2"].is_number()
-                                                         ? r["noise_std_err_cd_m2"]
-                                                         : nlohmann::json(nullptr)}};
+            o.figures = jobFigures(r);
         }
         outcomes.push_back(o);
         if (o.status == "stopped")
@@ -315,7 +334,8 @@ int runBatch(const BatchOptions& options)
 
     // The summary: every job, run or not.
     nlohmann::json list = nlohmann::json::array();
-    std::string csv = "name,status,seconds,paths,mean_luminance_cd_m2,noise_std_err_cd_m2,json,error\n";
+    std::string csv =
+        "name,status,seconds,paths,mean_luminance_cd_m2,noise_std_err_cd_m2,sensors_mean_lux,json,error\n";
     for (std::size_t i = 0; i < jobs.size(); ++i) {
         Outcome o;
         if (i < outcomes.size())
@@ -325,17 +345,22 @@ int runBatch(const BatchOptions& options)
         nlohmann::json e = {{"name", jobs[i].name}, {"status", o.status}, {"seconds", o.seconds},
                             {"json", o.json.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.json)},
                             {"error", o.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.error)}};
-        std::string paths, mean, noise;
+        std::string paths, mean, noise, sensorMeans;
         if (o.figures.is_object()) {
             e.update(o.figures);
             paths = std::to_string(o.figures["paths"].get<unsigned long long>());
-            mean = number(o.figures["mean_luminance_cd_m2"].get<double>());
+            if (o.figures["mean_luminance_cd_m2"].is_number())
+                mean = number(o.figures["mean_luminance_cd_m2"].get<double>());
             if (o.figures["noise_std_err_cd_m2"].is_number())
                 noise = number(o.figures["noise_std_err_cd_m2"].get<double>());
+            // each sensor's mean illuminance, NAME=LUX separated by ';'
+            for (const auto& [name, t] : o.figures["sensors"].items())
+                if (t["mean_lux"].is_number())
+                    sensorMeans += (sensorMeans.empty() ? "" : ";") + name + "=" + number(t["mean_lux"].get<double>());
         }
         list.push_back(e);
-        csv += cat(csvField(jobs[i].name), ",", o.status, ",", number(o.seconds), ",", paths, ",", mean, ",", noise,
-                   ",", csvField(o.json), ",", csvField(o.error), "\n");
+        csv += cat(csvField(jobs[i].name), ",", o.status, ",", number(o.seconds), ",", paths, ",", mean, ",", noise, ",",
+                   csvField(sensorMeans), ",", csvField(o.json), ",", csvField(o.error), "\n");
     }
     nlohmann::json summary{{"jobs_file", options.jobsPath}, {"failed", failed}, {"jobs", list}};
     makeUtf8(summary);

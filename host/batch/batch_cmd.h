@@ -14,8 +14,8 @@
 // the kernel environment, the job's arguments and the bytes of every file it read (as it read them,
 // before rendering), and a job whose key is unchanged and whose JSON output is still there is not
 // run again (--rerun runs all). JOBS.summary.json and JOBS.summary.csv list every job: status
-// (done, skipped, failed, stopped, not run), seconds, paths, mean luminance, noise, its JSON output
-// and the error. A stop signal, held for the whole batch (util/stop_signals.h), stops the job in
+// (done, skipped, failed, stopped, not run), seconds, paths, mean luminance, noise, each sensor's
+// mean illuminance, its JSON output and the error. A stop signal, held for the whole batch (util/stop_signals.h), stops the job in
 // flight as `fenestra render` stops (outputs written) and runs no further job.
 // Exit status: 0 when no job failed, 1 when any did (after all ran), 130 when stopped.
 #pragma once

@@ -41,12 +41,13 @@ TEST(CliBatch, JobsWriteTheirRendersBytesAndAFailureDoesNotStopTheRest)
                      "--width", "48", "--no-progress"}},
         {"broken", {scenes + "/no_such_scene.gltf", "--paths", "1000", "--no-progress"}},
         {"uniform", {scenes + "/inner_room.gltf", "--method", "uniform", "--paths", "200000", "--width", "40",
-                     "--no-progress"}}};
+                     "--no-progress"}},
+        {"plane", {scenes + "/room.gltf", "--no-image", "--work-plane", "floor", "--paths", "200000", "--no-progress"}}};
     std::string text = "{\"jobs\": [";
     for (std::size_t i = 0; i < jobs.size(); ++i) {
         std::vector<std::string> args = jobs[i].second;
         args.push_back("--out");
-        args.push_back(dir + "/batch_" + jobs[i].first + ".exr");
+        args.push_back(dir + "/batch_" + jobs[i].first + (jobs[i].first == "plane" ? "" : ".exr"));
         text += (i ? ", " : "") + std::string("{\"name\": \"") + jobs[i].first + "\", \"render\": " + quoted(args) + "}";
     }
     text += "]}";
@@ -64,9 +65,16 @@ TEST(CliBatch, JobsWriteTheirRendersBytesAndAFailureDoesNotStopTheRest)
             out.push_back(j["status"]);
         return out;
     };
-    EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "done", "failed", "done"}));
+    EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "done", "failed", "done", "done"}));
     const std::string csv = slurp(dir + "/jobs.summary.csv");
-    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << csv;
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6) << csv;
+    // The summary carries each job's figures: an image's mean, a sensor's mean illuminance.
+    const auto summary = nlohmann::json::parse(slurp(dir + "/jobs.summary.json"));
+    EXPECT_GT(summary["jobs"][0]["mean_luminance_cd_m2"].get<double>(), 0.0);
+    EXPECT_TRUE(summary["jobs"][4]["mean_luminance_cd_m2"].is_null());
+    const double lux = summary["jobs"][4]["sensors"]["workplane"]["mean_lux"].get<double>();
+    EXPECT_EQ(lux, nlohmann::json::parse(slurp(dir + "/batch_plane.json"))["sensors"]["workplane"]["mean_lux"].get<double>());
+    EXPECT_NE(csv.find(",workplane="), std::string::npos) << csv;
 
     // The weather job renders the room the adaptive job did (another file, the same geometry): it
     // reuses that job's BVH and buffers, and its image is still the render's own (below).
@@ -76,7 +84,7 @@ TEST(CliBatch, JobsWriteTheirRendersBytesAndAFailureDoesNotStopTheRest)
 
     // The same jobs one by one: the same bytes.
     for (const auto& [name, args] : jobs) {
-        if (name == "broken")
+        if (name == "broken" || name == "plane")
             continue;
         std::string line = "render";
         for (const std::string& a : args)
@@ -92,13 +100,13 @@ TEST(CliBatch, JobsWriteTheirRendersBytesAndAFailureDoesNotStopTheRest)
     const auto before = std::filesystem::last_write_time(dir + "/batch_uniform.exr");
     const CliRun again = run("batch " + dir + "/jobs.json");
     EXPECT_EQ(again.status, 1) << again.err;
-    EXPECT_EQ(statuses(), (std::vector<std::string>{"skipped", "skipped", "failed", "skipped"}));
+    EXPECT_EQ(statuses(), (std::vector<std::string>{"skipped", "skipped", "failed", "skipped", "skipped"}));
     EXPECT_EQ(std::filesystem::last_write_time(dir + "/batch_uniform.exr"), before);
     std::ofstream(dir + "/room.gltf", std::ios::app) << "\n";  // the same scene, other bytes
     const CliRun changed = run("batch " + dir + "/jobs.json");
-    EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "skipped", "failed", "skipped"})) << changed.err;
+    EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "skipped", "failed", "skipped", "skipped"})) << changed.err;
     const CliRun all = run("batch --rerun " + dir + "/jobs.json");
-    EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "done", "failed", "done"})) << all.err;
+    EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "done", "failed", "done", "done"})) << all.err;
 }
 
 TEST(CliBatch, AStopEndsTheJobInFlightAndRunsNoMore)
