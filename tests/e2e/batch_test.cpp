@@ -5,6 +5,7 @@
 // runs one again when a file it read changes; a broken jobs file is one line naming the key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -154,6 +155,37 @@ TEST(CliBatch, AChangedWeatherFileRunsItsJobAgain)
     std::ofstream(epw, std::ios::app) << "\n";
     ASSERT_EQ(run("batch " + dir + "/jobs.json").status, 0);
     EXPECT_EQ(status(), "done");
+}
+
+TEST(CliBatch, AnHourlyStudyFromTheWeatherFile)
+{
+    // scripts/weather_jobs.py writes a job per daylight hour of a day (the sun at least 6 degrees
+    // high at mid-hour); the batch renders them all, and its summary gives each hour's mean
+    // illuminance on the work plane, highest near noon.
+    const std::string dir = test::tempDir("cli-batch-hours");
+    const std::string cmd = "cd " + std::string(FEN_SOURCE_DIR) +
+                            " && /usr/bin/python3 scripts/weather_jobs.py scenes/weather/tmy_45.000_8.000_2005_2016.epw"
+                            " --days 06-21 --out-dir " + dir + "/out --jobs " + dir + "/jobs.json -- scenes/room.gltf"
+                            " --no-image --work-plane floor --paths 50000 --no-progress 2>" + dir + "/script.err";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir + "/script.err");
+    const auto jobs = nlohmann::json::parse(slurp(dir + "/jobs.json"))["jobs"];
+    ASSERT_EQ(jobs.size(), 14u);  // 06..19: 05:00-06:00 has the sun below 6 degrees at its middle
+    EXPECT_EQ(jobs[0]["name"], "06-21_06");
+    // Run where the jobs' relative paths point, as a user would.
+    ASSERT_EQ(std::system(("cd " + std::string(FEN_SOURCE_DIR) + " && " + FENESTRA_BIN + " batch " + dir +
+                           "/jobs.json 2>" + dir + "/batch.err").c_str()),
+              0)
+        << slurp(dir + "/batch.err");
+    const auto s = nlohmann::json::parse(slurp(dir + "/jobs.summary.json"));
+    std::vector<double> lux;
+    for (const auto& j : s["jobs"]) {
+        EXPECT_EQ(j["status"], "done") << j["name"];
+        lux.push_back(j["sensors"]["workplane"]["mean_lux"].get<double>());
+    }
+    const auto peak = std::max_element(lux.begin(), lux.end()) - lux.begin();
+    EXPECT_GE(peak, 5);  // 11:00-12:00 .. 14:00-15:00
+    EXPECT_LE(peak, 8);
+    EXPECT_GT(lux[static_cast<std::size_t>(peak)], 3.0 * lux.front());
 }
 
 TEST(CliBatch, BrokenJobsFilesAreOneLineErrorsNamingTheKey)
