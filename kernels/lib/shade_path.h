@@ -77,6 +77,15 @@ static inline float2 guide_draw(global const RenderParams* params, const Guide* 
     return guide_sample(guide, r, bits, key, d);
 }
 
+/* scatter_diffuse() through point sq of the square, drawn with density d: the weight over d. */
+static inline int scatter_through(global const RenderParams* params, PathState* p, float3 albedo, float3 n, float4 u,
+                                  float2 sq, float d, float3* next)
+{
+    const int alive = scatter_diffuse(params, p, albedo, n, (float4)(u.x, sq.x, sq.y, u.w), next);
+    p->beta.xyz /= d;
+    return alive;
+}
+
 /* The diffuse scatter at a path's first diffuse vertex (slot: its guide slot): through a leaf of the
    guide's table when there is a guide, the weight over its density, and the record for what the
    path delivers from here on (lib/guide.h); else scatter_diffuse(). */
@@ -97,8 +106,7 @@ static inline int scatter_first(global const RenderParams* params, const Guide* 
     } else {
         key = guide_leaf(guide, r, sq);
     }
-    const int alive = scatter_diffuse(params, p, albedo, n, (float4)(u.x, sq.x, sq.y, u.w), next);
-    p->beta.xyz /= d;
+    const int alive = scatter_through(params, p, albedo, n, u, sq, d, next);
     const float y = rgb_luminance(p->beta.xyz);
     p->org.w = alive && y > 0.0f ? guide->params->stats_scale * cam->up.w / (y * d) : 0.0f;
     p->dir.w = as_float(key);
@@ -120,9 +128,7 @@ static inline int scatter_later(global const RenderParams* params, const Guide* 
             float d;
             const float2 sq = guide_draw(params, guide, p, r, &key, &d);
             t->guided += 1;
-            const int alive = scatter_diffuse(params, p, albedo, n, (float4)(u.x, sq.x, sq.y, u.w), next);
-            p->beta.xyz /= d;
-            return alive;
+            return scatter_through(params, p, albedo, n, u, sq, d, next);
         }
     }
     return scatter_diffuse(params, p, albedo, n, u, next);
