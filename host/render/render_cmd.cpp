@@ -137,23 +137,22 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     Scene scene = loadGltf(opt.scenePath);
     // No output may overwrite an input: the scene and the files it reads, the reference, and the
     // checkpoint resumed from (except by the checkpoint itself: continuing one in place).
-    {
-        std::vector<std::pair<std::string, std::string>> inputs;
-        for (std::size_t i = 0; i < scene.files.size(); ++i)
-            inputs.emplace_back(i == 0 ? "the scene" : "a file the scene reads", scene.files[i]);
-        inputs.emplace_back("the --reference image", referencePath);
-        for (const std::string& f : opt.sensors.pointsFiles)
-            inputs.emplace_back("a --sensor-points file", f);
-        if (opt.skySun.weather)
-            inputs.emplace_back("the --weather file", *opt.skySun.weather);
-        for (const std::string& out : namedOutputs)
-            refuseOverwritingInputs(out, "--out", inputs);
-        if (!checkpointPath.empty())
-            refuseOverwritingInputs(checkpointPath, "--checkpoint", inputs);
-        inputs = {{"the checkpoint to resume (--resume)", resumePath}};
-        for (const std::string& out : namedOutputs)
-            refuseOverwritingInputs(out, "--out", inputs);
+    // (what, path) of every file the render reads but the checkpoint it resumes; "" when not given.
+    std::vector<std::pair<std::string, std::string>> inputs;
+    for (std::size_t i = 0; i < scene.files.size(); ++i)
+        inputs.emplace_back(i == 0 ? "the scene" : "a file the scene reads", scene.files[i]);
+    inputs.emplace_back("the --reference image", referencePath);
+    for (const std::string& f : opt.sensors.pointsFiles)
+        inputs.emplace_back("a --sensor-points file", f);
+    if (opt.skySun.weather)
+        inputs.emplace_back("the --weather file", *opt.skySun.weather);
+    const std::pair<std::string, std::string> resumed{"the checkpoint to resume (--resume)", resumePath};
+    for (const std::string& out : namedOutputs) {
+        refuseOverwritingInputs(out, "--out", inputs);
+        refuseOverwritingInputs(out, "--out", {resumed});
     }
+    if (!checkpointPath.empty())
+        refuseOverwritingInputs(checkpointPath, "--checkpoint", inputs);
     const SkySunReport skySun = applySkySunOptions(opt.skySun, &scene);
     for (const auto& w : scene.warnings)
         std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
@@ -225,14 +224,12 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
         ownContext.emplace(ocl::selectDevice(opt.device));
     ocl::Context& ctx = hooks.context ? *hooks.context : *ownContext;
     if (hooks.onInputs) {
-        std::vector<std::string> read = scene.files;
-        for (const std::string* f : {&referencePath, &resumePath})
-            if (!f->empty())
-                read.push_back(*f);
-        for (const std::string& f : opt.sensors.pointsFiles)
-            read.push_back(f);
-        if (opt.skySun.weather)
-            read.push_back(*opt.skySun.weather);
+        std::vector<std::string> read;
+        for (const auto& input : inputs)
+            if (!input.second.empty())
+                read.push_back(input.second);
+        if (!resumePath.empty())
+            read.push_back(resumePath);
         hooks.onInputs(read, jsonPath);
     }
     // What the film and the path pool will take, against what the device and the host have.
