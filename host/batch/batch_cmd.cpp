@@ -19,6 +19,7 @@
 #include "cl/context.h"
 #include "cl/device.h"
 #include "io/json_text.h"
+#include "io/output_files.h"
 #include "render/checkpoint.h"
 #include "render/device_scene.h"
 #include "render/render_cmd.h"
@@ -36,14 +37,24 @@ struct Job {
     std::vector<std::string> args;
 };
 
-std::string slurpFile(const std::string& path, const std::string& what)
+// A file's bytes into *out; false when it cannot be read.
+bool readBytes(const std::string& path, std::string* out)
 {
     std::ifstream in(path, std::ios::binary);
     if (!in)
-        throw Error(cat(printable(path), ": cannot open ", what));
+        return false;
     std::ostringstream s;
     s << in.rdbuf();
-    return s.str();
+    *out = s.str();
+    return true;
+}
+
+std::string slurpFile(const std::string& path, const std::string& what)
+{
+    std::string bytes;
+    if (!readBytes(path, &bytes))
+        throw Error(cat(printable(path), ": cannot open ", what));
+    return bytes;
 }
 
 // The jobs file, checked whole before anything runs: one-line errors naming the file and key.
@@ -108,13 +119,11 @@ std::string jobKey(const Job& job, const std::string& device, const std::vector<
     for (const std::string& a : job.args)
         f.text(a);
     for (const std::string& p : inputs) {
-        std::ifstream in(p, std::ios::binary);
-        if (!in)
+        std::string bytes;
+        if (!readBytes(p, &bytes))
             return "";
-        std::ostringstream s;
-        s << in.rdbuf();
         f.text(p);
-        f.text(s.str());
+        f.text(bytes);
     }
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
@@ -147,18 +156,12 @@ std::string sidePath(const std::string& jobsPath, const std::string& suffix)
     return base + suffix;
 }
 
+// Written as a render's outputs are (io/output_files.h): a unique temporary, then a rename.
 void writeText(const std::string& path, const std::string& text)
 {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!(out << text) || !out.flush())
-            throw Error(cat(printable(path), ": cannot write"));
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec)
-        throw Error(cat(printable(path), ": cannot write (", ec.message(), ")"));
+    OutputFiles out;
+    out.add(path, text);
+    out.commit();
 }
 
 std::string number(double v)
@@ -321,11 +324,9 @@ int runBatch(const BatchOptions& options)
             writeText(statePath, state.dump(1) + "\n");
         }
         if (!o.json.empty() && (o.status == "done" || o.status == "skipped" || o.status == "stopped")) {
-            std::ifstream in(o.json, std::ios::binary);
-            std::ostringstream text;
-            text << in.rdbuf();
-            const nlohmann::json r = nlohmann::json::parse(text.str(), nullptr, false);
-            o.figures = jobFigures(r);
+            std::string text;
+            if (readBytes(o.json, &text))
+                o.figures = jobFigures(nlohmann::json::parse(text, nullptr, false));
         }
         outcomes.push_back(o);
         if (o.status == "stopped")
@@ -364,8 +365,10 @@ int runBatch(const BatchOptions& options)
     }
     nlohmann::json summary{{"jobs_file", options.jobsPath}, {"failed", failed}, {"jobs", list}};
     makeUtf8(summary);
-    writeText(summaryJson, summary.dump(1) + "\n");
-    writeText(summaryCsv, csv);
+    OutputFiles out;  // the two summaries, committed as one set
+    out.add(summaryCsv, csv);
+    out.add(summaryJson, summary.dump(1) + "\n");
+    out.commit();
     std::fprintf(stderr, "fenestra: batch: %zu jobs, %d failed%s; summary in %s and %s\n", jobs.size(), failed,
                  stopped ? ", stopped by a signal" : "", printable(summaryJson).c_str(), printable(summaryCsv).c_str());
     if (stopped)
