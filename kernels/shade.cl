@@ -33,7 +33,7 @@ static inline uint shade_one(uint i, global const RenderParams* params, const Gu
     const SurfaceHit h = hits[i];
 #ifdef FEN_HAS_SENSORS
     const float t_max = as_uint(h.normal.w) != FEN_INVALID_ID ? distance(h.pos.xyz, p.org.xyz) : INFINITY;
-    sensor_record(sensors, p.org.xyz, p.dir.xyz, t_max, p.beta, counters);
+    sensor_record(sensors, p.org.xyz, p.dir.xyz, t_max, p.beta, p.flags, counters);
 #else
     (void)sensors;
 #endif

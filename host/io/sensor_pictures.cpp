@@ -66,8 +66,19 @@ std::vector<std::string> sensorPicturePaths(const SensorFile& file, const std::s
 std::vector<SensorPicture> sensorPictures(const SensorFile& file, bool df, FalseColorScale scale,
                                           const std::string& outPng, const std::optional<std::string>& title)
 {
-    const auto valueOf = [df](const SensorRow& r) { return df ? r.daylightFactor : r.illuminance; };
-    const std::string quantity = df ? "daylight factor" : "illuminance", unit = df ? "%" : "lux";
+    std::vector<double> values;
+    for (const SensorRow& r : file.rows)
+        values.push_back(df ? r.daylightFactor : r.illuminance);
+    return sensorPictures(file, values, df ? "daylight factor" : "illuminance", df ? "%" : "lux", scale, outPng, title);
+}
+
+std::vector<SensorPicture> sensorPictures(const SensorFile& file, const std::vector<double>& values,
+                                          const std::string& quantity, const std::string& unit, FalseColorScale scale,
+                                          const std::string& outPng, const std::optional<std::string>& title)
+{
+    if (values.size() != file.rows.size())
+        throw Error(cat("internal error: ", values.size(), " values for the ", file.rows.size(), " cells of ",
+                        printable(file.path)));
     const std::vector<SensorPlane> planes = sensorPlanes(file);
     const std::vector<std::string> paths = planePaths(file, planes, outPng);
     std::vector<SensorPicture> out;
@@ -77,7 +88,7 @@ std::vector<SensorPicture> sensorPictures(const SensorFile& file, bool df, False
         double sum = 0.0, area = 0.0, minimum = INFINITY;
         for (std::size_t k = 0; k < plane.rows.size(); ++k) {
             const SensorRow& r = file.rows[plane.rows[k]];
-            const double v = valueOf(r);
+            const double v = values[plane.rows[k]];
             cells.push_back({plane.u[k], plane.v[k], std::sqrt(r.area), v});
             if (!std::isnan(v)) {
                 sum += v * r.area;

@@ -27,6 +27,10 @@ struct SensorPicture {
 // `scale`; `title` replaces each picture's own.
 std::vector<SensorPicture> sensorPictures(const SensorFile& file, bool df, FalseColorScale scale,
                                           const std::string& outPng, const std::optional<std::string>& title = {});
+// The same for any per-cell quantity: `values` in the file's row order, named `quantity` in `unit`.
+std::vector<SensorPicture> sensorPictures(const SensorFile& file, const std::vector<double>& values,
+                                          const std::string& quantity, const std::string& unit, FalseColorScale scale,
+                                          const std::string& outPng, const std::optional<std::string>& title = {});
 // Their paths alone, for a render to claim its outputs before it has values to draw.
 std::vector<std::string> sensorPicturePaths(const SensorFile& file, const std::string& outPng);
 

@@ -62,6 +62,10 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     const auto t0 = std::chrono::steady_clock::now();
     const auto defs = scene.defines();
     const EmissionKernels ek = strategy.kernels();
+    // Daylight coefficients: the emitter tags each path with its sky patch (lib/sky_patch.h).
+    auto emitDefs = defs;
+    if (sensors.patchMF() > 0)
+        emitDefs.push_back("FEN_SKY_PATCH_MF=" + std::to_string(sensors.patchMF()));
     auto shadeDefs = defs;
     if (sensors.any())
         shadeDefs.push_back("FEN_HAS_SENSORS=1");
@@ -80,6 +84,8 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     if (mode == KernelMode::Fused) {
         auto fusedDefs = connectDefs;
         fusedDefs.push_back("FEN_FUSED=1");
+        if (sensors.patchMF() > 0)
+            fusedDefs.push_back("FEN_SKY_PATCH_MF=" + std::to_string(sensors.patchMF()));
         if (sensors.any())
             fusedDefs.push_back("FEN_HAS_SENSORS=1");
         if (sensorStats)
@@ -88,7 +94,7 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
         // Enough work-items to keep every compute unit busy while the last chunks drain.
         fusedItems_ = std::size_t{std::max<cl_uint>(1, ctx.info().computeUnits)} * 16;
     }
-    emit_ = cl::Kernel(ctx.program(ek.emitProgram, defs), "emit_paths");
+    emit_ = cl::Kernel(ctx.program(ek.emitProgram, emitDefs), "emit_paths");
     intersect_ = cl::Kernel(ctx.program("intersect.cl", defs), "intersect_paths");
     shade_ = cl::Kernel(ctx.program("shade.cl", shadeDefs), "shade_paths");
     connect_ = cl::Kernel(ctx.program("connect.cl", connectDefs), "connect_paths");

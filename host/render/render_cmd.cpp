@@ -18,6 +18,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "annual/annual_report.h"
+#include "annual/sky_patches.h"
 #include "cl/device.h"
 #include "io/exr_io.h"
 #include "io/image.h"
@@ -146,6 +148,8 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
         inputs.emplace_back("a --sensor-points file", f);
     if (opt.skySun.weather)
         inputs.emplace_back("the --weather file", *opt.skySun.weather);
+    if (opt.annual.weather)
+        inputs.emplace_back("the --annual weather file", *opt.annual.weather);
     const std::pair<std::string, std::string> resumed{"the checkpoint to resume (--resume)", resumePath};
     for (const std::string& out : namedOutputs) {
         refuseOverwritingInputs(out, "--out", inputs);
@@ -154,6 +158,20 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     if (!checkpointPath.empty())
         refuseOverwritingInputs(checkpointPath, "--checkpoint", inputs);
     const SkySunReport skySun = applySkySunOptions(opt.skySun, &scene);
+    // An annual study (DESIGN.md §8): its hours' skies from the weather file, read now so that a bad
+    // file fails before the render; the render itself is under a sky of 1 cd/m^2 everywhere, the
+    // ground too, and no sun, each path tagged with the patch it left the sky by.
+    std::optional<WeatherFile> annualWeather;
+    std::optional<AnnualSkies> annualSkyVectors;
+    if (opt.annual.weather) {
+        annualWeather = readWeatherFile(*opt.annual.weather);
+        annualSkyVectors = annualSkies(*annualWeather, opt.annual.settings);
+        scene.sun.present = false;
+        scene.sky = SkySpec{};
+        scene.sky.type = SkySpec::Type::Uniform;
+        scene.sky.where = "--annual";
+        scene.sky.luminance_cd_m2 = 1.0;
+    }
     for (const auto& w : scene.warnings)
         std::fprintf(stderr, "fenestra: warning: %s\n", w.c_str());
     for (const auto& w : skySun.warnings)
@@ -176,9 +194,23 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     }
     for (const std::string& p : sensorPngPaths)
         checkOutputPath(p, "--out");
+    std::optional<AnnualPaths> annualOut;
+    if (opt.annual.weather) {
+        annualOut = annualPaths(base, sensors);
+        std::vector<std::string> names{annualOut->csv, annualOut->matrix, annualOut->directMatrix};
+        names.insert(names.end(), annualOut->pngs.begin(), annualOut->pngs.end());
+        for (const std::string& p : names) {
+            checkOutputPath(p, "--out");
+            refuseOverwritingInputs(p, "--out", inputs);
+        }
+    }
     // One render at a time writes this set; what a killed one left is finished or removed first.
     std::vector<std::string> outputSet{opt.outPath, noisePath, pngPath, errorPath, sensorCsvPath, falsePath};
     outputSet.insert(outputSet.end(), sensorPngPaths.begin(), sensorPngPaths.end());
+    if (annualOut) {
+        outputSet.insert(outputSet.end(), {annualOut->csv, annualOut->matrix, annualOut->directMatrix});
+        outputSet.insert(outputSet.end(), annualOut->pngs.begin(), annualOut->pngs.end());
+    }
     outputSet.push_back(jsonPath);
     if (!checkpointPath.empty())
         outputSet.push_back(checkpointPath);
@@ -191,7 +223,9 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     noCamera.yfovRad = 1.0;
     noCamera.nodeName = "none";
     const CameraSpec& camera = noImage ? noCamera : findCamera(scene, opt.camera);
-    const std::optional<Goniogram> sky = buildSky(scene);
+    std::optional<Goniogram> sky = buildSky(scene);
+    if (opt.annual.weather)
+        sky = sky->withGround(1.0, "--annual");
     int width = 1, height = 1;
     if (!noImage)
         resolveImageSize(camera, opt.width.value_or(0), opt.height.value_or(0), &width, &height);
@@ -258,6 +292,7 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     settings.rois = {roi};
     settings.sensors = &sensors;
     settings.noImage = noImage;
+    settings.skyPatchMF = opt.annual.weather ? opt.annual.settings.mf : 0;
     for (const auto& reg : regions)
         settings.rois.push_back(reg.second);
     settings.checkpointPath = checkpointPath;
@@ -345,6 +380,11 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
                                                  sensorPngPath))
             outputs.add(pic.path, std::move(pic.png));
     }
+    nlohmann::json annualJson = nullptr;
+    std::vector<std::string> annualLines;
+    if (annualOut && r.daylightCoefficients)
+        annualJson = writeAnnual(sensors, *r.daylightCoefficients, *annualWeather, *annualSkyVectors,
+                                 opt.annual.settings, *annualOut, outputs, &annualLines);
     if (opt.sensors.falseColor) {
         // the image's luminance in false colour, on a log scale of whole decades
         std::vector<double> y(r.image.pixels());
@@ -432,6 +472,7 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     }
     j["regions"] = regionsJson;
     j["sensors"] = sensorJson;
+    j["annual"] = annualJson;
     j["sensor_smoothing_m"] = opt.sensors.smoothing_m ? nlohmann::json(*opt.sensors.smoothing_m) : nlohmann::json(nullptr);
     j["emission"] = r.emission;
     j["progress"] = progress;
@@ -465,6 +506,8 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     }
     if (opt.sensors.falseColor)
         j["outputs"]["falsecolor_png"] = falsePath;
+    if (annualJson.is_object())
+        j["outputs"]["annual"] = annualJson["outputs"];
     if (reference)
         j["outputs"]["error_png"] = errorPath;
     // Names are bytes: what is not UTF-8 is written as \xNN (util/utf8.h), so this cannot fail now.
@@ -500,6 +543,8 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
         }
         std::printf("\n");
     }
+    for (const std::string& line : annualLines)
+        std::printf("%s\n", line.c_str());
     // Every file written besides the EXR, in one line.
     std::vector<std::string> wrote;
     if (!noImage)
@@ -511,6 +556,10 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     if (r.sensors) {
         wrote.push_back(sensorCsvPath);
         wrote.insert(wrote.end(), sensorPngPaths.begin(), sensorPngPaths.end());
+    }
+    if (annualJson.is_object()) {
+        wrote.insert(wrote.end(), {annualOut->csv, annualOut->matrix, annualOut->directMatrix});
+        wrote.insert(wrote.end(), annualOut->pngs.begin(), annualOut->pngs.end());
     }
     wrote.push_back(jsonPath);
     std::string list;

@@ -83,6 +83,7 @@ void addRenderOptions(CLI::App& r, RenderOptions& o)
     r.add_option("--resume", o.resumePath, "Continue the render saved in this checkpoint (same scene and options)");
     addSkySunOptions(&r, &o.skySun);
     addSensorOptions(&r, &o.sensors);
+    addAnnualOptions(&r, &o.annual);
     r.add_flag("--progress", o.progressOn, "Show progress even when stderr is not a terminal");
     r.add_flag("--no-progress", o.progressOff, "Never show progress");
 }
@@ -138,6 +139,7 @@ std::int64_t parseCount(const std::string& text, const char* option, std::int64_
 void validateRenderOptions(RenderOptions& o)
 {
     parseCheckpointEvery(o.checkpointEvery, &o);
+    validateAnnualOptions(o.annual, o.skySun, o.sensors, o.checkpointPath.has_value() || o.resumePath.has_value());
     validateSensorOptions(o.sensors, o.skySun);
     if (o.sensors.noImage) {
         // Nothing of the image's: a render for its sensors alone.

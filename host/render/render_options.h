@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "annual/annual_options.h"
 #include "emission/emission_options.h"
 #include "sensor/sensor_options.h"
 #include "sky/sky_sun_options.h"
@@ -62,6 +63,7 @@ struct RenderOptions {
     std::optional<std::string> resumePath;         // --resume
     SkySunOptions skySun;                  // --sky, --sun, ... (sky/sky_sun_options.h)
     SensorOptions sensors;                 // --sensor-points, --work-plane, --daylight-factor, ...
+    AnnualOptions annual;                  // --annual FILE.epw, --sky-patches, --occupied, ...
 
     std::uint32_t seedValue() const { return static_cast<std::uint32_t>(seed.value_or(1)); }
     int maxBouncesValue() const { return maxBounces.value_or(1024); }

@@ -77,6 +77,7 @@ struct Renderer::Impl {
     std::uint64_t sceneHash_ = 0;  // only when checkpointing or resuming
     bool steersByPixel = false;    // the strategy wants the image so far (imageEstimate)
     std::optional<SensorStatistics> sensorStats;  // the counted batches' sensor cells, with sensors
+    std::optional<SensorStatistics> dcStats;      // ... and their daylight coefficients, with skyPatchMF
     CameraSampler cameraSampler;  // the camera pass's samples per pixel
     // With no image and a relative target, the sensors steer: each cell's illuminance so far,
     // smoothed over its neighbours (so that one lucky path does not swing it), sets its factor.
@@ -94,13 +95,16 @@ struct Renderer::Impl {
           skyTables(makeSkyTables(g)), sky(c, skyTables),
           film(c, w, h, referenceLuminance(s, skyTables)),
           // illuminance ~ pi x luminance: the pixels' fixed-point range serves the cells too
-          sensors(st.sensors && !st.sensors->empty() ? DeviceSensors(c, *st.sensors, static_cast<float>(film.fixedScale() / M_PI))
-                                                      : DeviceSensors(c)),
+          sensors(st.sensors && !st.sensors->empty()
+                      ? DeviceSensors(c, *st.sensors, static_cast<float>(film.fixedScale() / M_PI), st.skyPatchMF)
+                      : DeviceSensors(c)),
           strategy(makeEmissionStrategy(st.emission, {c, s, skyTables, g, sky, scene.bvh().width(), film.fixedScale(), film.width(), film.height()})),
           pool(st.poolSize > 0 ? st.poolSize : defaultPoolSlots(c.info())),
           cameraSampler(film.pixels(), static_cast<std::uint32_t>(st.cameraSpp),
                         st.noImage ? CameraPassMode::Fixed : st.cameraPass)
     {
+        if (st.skyPatchMF > 0 && (!st.checkpointPath.empty() || !st.resumePath.empty()))
+            throw Error("--checkpoint and --resume do not carry daylight coefficients: an annual study runs in one go");
         film.setCameraSamples(cameraSampler.counts());
         camera = cam;
         if (!st.checkpointPath.empty() || !st.resumePath.empty())
@@ -221,6 +225,7 @@ struct Renderer::Impl {
         std::vector<double> rgb;  // per pixel
         std::vector<float> camera;  // the camera pass's output (film.h cameraImage)
         std::vector<double> sensorLux;  // per sensor cell
+        std::vector<double> coefficients;  // the daylight-coefficient matrices, with skyPatchMF
         std::uint64_t paths = 0;  // traced: the batch's count, or fewer when a stop cut it short
     };
 
@@ -261,6 +266,7 @@ struct Renderer::Impl {
         BatchImage img;
         img.rgb = film.read(done, &img.camera);
         img.sensorLux = sensors.read(done);
+        img.coefficients = sensors.readMatrices(done);
         img.paths = done;
         return img;
     }
@@ -272,6 +278,8 @@ struct Renderer::Impl {
         const double w = strategy->batchWeight();
         if (sensorStats)
             sensorStats->add(img.sensorLux, w);
+        if (dcStats)
+            dcStats->add(img.coefficients, w);
         if (cameraSampler.mode() == CameraPassMode::Fixed) {
             // The same samples every batch, so the camera pass is part of the batch's image (and
             // the image is the one this mode always gave, bit for bit).
@@ -433,6 +441,8 @@ struct Renderer::Impl {
         BatchStatistics stats(film.width(), film.height(), settings.rois);
         if (sensors.any())
             sensorStats.emplace(sensors.cells());
+        if (sensors.patches())
+            dcStats.emplace(2 * sensors.cells() * sensors.patches());
         LoopState l;
 
         start = lastProgress = Clock::now();
@@ -570,6 +580,7 @@ struct Renderer::Impl {
             r.roiCamera.push_back(stats.roiCamera(k));
         r.batchWeights = stats.weights();
         r.sensors = sensorStats;
+        r.daylightCoefficients = dcStats;
         r.emission = strategy->report();
         r.emissionWarnings = strategy->warnings();
         r.emittedFluxPerPath = strategy->emittedFluxPerPath();

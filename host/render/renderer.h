@@ -79,6 +79,10 @@ struct RenderSettings {
     // No image: the camera sees nothing and connects to nothing (a render for its sensors alone);
     // the film is one black pixel.
     bool noImage = false;
+    // Daylight coefficients (annual/sky_patches.h; DESIGN.md §8): > 0, every path is tagged with
+    // the Reinhart patch (this MF) it left the sky by, and the sensors also sum by patch. The sky
+    // should then have a known luminance everywhere (the annual study's: 1 cd/m^2, ground too).
+    int skyPatchMF = 0;
     std::function<void(const BatchProgress&)> onBatch;  // optional
     // Set (by a signal handler) to stop: the batch in flight finishes and the render ends with the
     // batches done -- at least one, so the image is valid.
@@ -129,6 +133,9 @@ struct RenderResult {
     // variance. roiBatchMeans are of the light-traced part.
     std::vector<std::pair<double, double>> roiCamera;
     std::optional<SensorStatistics> sensors;  // with sensors: each cell's illuminance over the batches
+    // With skyPatchMF: the two daylight-coefficient matrices (DeviceSensors::readMatrices) over the
+    // batches, as one vector of 2 x cells x patches.
+    std::optional<SensorStatistics> daylightCoefficients;
     // The camera pass: its mode, samples, the share of the render's device time it took and its
     // predicted share of the image's variance (render_cmd.cpp writes it as JSON camera_pass).
     nlohmann::json cameraPass;

@@ -103,10 +103,13 @@ DeviceSensors::DeviceSensors(ocl::Context& ctx) : ctx_(ctx)
     upload(ctx, SensorTables{});
 }
 
-DeviceSensors::DeviceSensors(ocl::Context& ctx, const SensorSet& set, float fixedScale)
-    : ctx_(ctx), cells_(set.cells.size()), fixedScale_(fixedScale)
+DeviceSensors::DeviceSensors(ocl::Context& ctx, const SensorSet& set, float fixedScale, int patchMF)
+    : ctx_(ctx), cells_(set.cells.size()), patches_(patchMF > 0 ? skyPatchCount(patchMF) : 0), patchMF_(patchMF),
+      fixedScale_(fixedScale)
 {
-    upload(ctx, makeSensorTables(set, fixedScale));
+    SensorTables t = makeSensorTables(set, fixedScale);
+    t.info.patches = static_cast<std::uint32_t>(patches_);
+    upload(ctx, t);
 }
 
 void DeviceSensors::upload(ocl::Context& ctx, const SensorTables& t)
@@ -124,7 +127,8 @@ void DeviceSensors::upload(ocl::Context& ctx, const SensorTables& t)
     cellTable_ = make(t.cells, "sensor cells");
     bucketStart_ = make(t.bucketStart, "sensor buckets");
     bucketCells_ = make(t.bucketCells, "sensor bucket cells");
-    accum_ = ctx.buffer(CL_MEM_READ_WRITE, std::max<std::size_t>(cells_, 1) * 16, "sensor accumulators");
+    accum_ = ctx.buffer(CL_MEM_READ_WRITE, accumWords() * 8,
+                        patches_ ? "sensor accumulators and daylight coefficients" : "sensor accumulators");
     const std::vector<float> ones(std::max<std::size_t>(cells_, 1), 1.0f);
     steer_ = ctx.buffer(CL_MEM_READ_ONLY, ones.size() * 4, "sensor steering", ones.data());
     clear();
@@ -138,7 +142,7 @@ void DeviceSensors::setSteer(const std::vector<float>& perCell)
 
 void DeviceSensors::clear()
 {
-    ctx_.queue().enqueueFillBuffer(accum_, cl_ulong(0), 0, std::max<std::size_t>(cells_, 1) * 16);
+    ctx_.queue().enqueueFillBuffer(accum_, cl_ulong(0), 0, accumWords() * 8);
 }
 
 std::vector<double> DeviceSensors::read(std::uint64_t paths)
@@ -152,6 +156,24 @@ std::vector<double> DeviceSensors::read(std::uint64_t paths)
     for (std::size_t c = 0; c < cells_; ++c)
         lux[c] = fixed128(acc.data() + 2 * c) * toLux;
     return lux;
+}
+
+}  // namespace fen
+
+namespace fen {
+
+std::vector<double> DeviceSensors::readMatrices(std::uint64_t paths)
+{
+    const std::size_t n = 2 * cells_ * patches_;
+    std::vector<double> m(n, 0.0);
+    if (n == 0)
+        return m;
+    std::vector<std::uint64_t> acc(2 * n);
+    ctx_.queue().enqueueReadBuffer(accum_, CL_TRUE, cells_ * 16, acc.size() * 8, acc.data());
+    const double toLux = 1.0 / (static_cast<double>(fixedScale_) * static_cast<double>(std::max<std::uint64_t>(paths, 1)));
+    for (std::size_t k = 0; k < n; ++k)
+        m[k] = fixed128(acc.data() + 2 * k) * toLux;
+    return m;
 }
 
 }  // namespace fen

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cl/context.h"
+#include "annual/sky_patches.h"
 #include "sensor/sensor_set.h"
 #include "shared/fen_sensor.h"
 
@@ -29,12 +30,16 @@ class DeviceSensors {
 public:
     // No sensors.
     explicit DeviceSensors(ocl::Context& ctx);
-    // `fixedScale`: accumulators hold round(lux x paths x fixedScale).
-    DeviceSensors(ocl::Context& ctx, const SensorSet& set, float fixedScale);
+    // `fixedScale`: accumulators hold round(lux x paths x fixedScale). `patches` > 0: the
+    // daylight-coefficient matrices too (shared/fen_sensor.h), cells x patches each, for paths
+    // tagged by Reinhart's subdivision MF = `patchMF` (lib/sky_patch.h; kernels built with it).
+    DeviceSensors(ocl::Context& ctx, const SensorSet& set, float fixedScale, int patchMF = 0);
 
     bool any() const { return cells_ > 0; }
     std::size_t cells() const { return cells_; }
     float fixedScale() const { return fixedScale_; }
+    int patchMF() const { return patchMF_; }          // 0: no daylight coefficients
+    std::size_t patches() const { return patches_; }  // columns of each matrix
     // Kernel arguments, in this order (kernels/shade.cl, lib/fused_kernel.h).
     const cl::Buffer& info() const { return info_; }
     const cl::Buffer& planes() const { return planes_; }
@@ -50,12 +55,18 @@ public:
     void clear();
     // Each cell's illuminance over `paths` paths (lux): accumulators / (scale x paths).
     std::vector<double> read(std::uint64_t paths);
+    // The two daylight-coefficient matrices over `paths` paths, each cells x patches row-major,
+    // all light then the direct light: lux per path-luminance unit, so sr for a sky of unit
+    // luminance (empty without them).
+    std::vector<double> readMatrices(std::uint64_t paths);
 
 private:
     void upload(ocl::Context& ctx, const SensorTables& t);
     ocl::Context& ctx_;
-    std::size_t cells_ = 0;
+    std::size_t cells_ = 0, patches_ = 0;
+    int patchMF_ = 0;
     float fixedScale_ = 1.0f;
+    std::size_t accumWords() const { return std::max<std::size_t>(cells_ * (1 + 2 * patches_), 1) * 2; }
     cl::Buffer info_, planes_, cellTable_, bucketStart_, bucketCells_, accum_, steer_;
 };
 

@@ -76,6 +76,22 @@ SensorFile sensorRows(const SensorSet& set, const SensorStatistics& stats, const
     return file;
 }
 
+std::string sensorCsvPlace(const SensorRow& r)
+{
+    // Names are quoted when they hold a comma or a quote (RFC 4180).
+    std::string name = r.sensor;
+    if (name.find_first_of(",\"\n\r") != std::string::npos) {
+        std::string q = "\"";
+        for (char ch : name)
+            q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+        name = q + "\"";
+    }
+    std::string out = name + "," + r.cell;
+    for (double v : {r.x, r.y, r.z, r.nx, r.ny, r.nz, r.area})
+        out += "," + num(v);
+    return out;
+}
+
 std::string sensorCsv(const SensorFile& file)
 {
     std::string out = "sensor,cell,x_m,y_m,z_m,nx,ny,nz,area_m2,illuminance_lux,std_err_lux";
@@ -83,16 +99,8 @@ std::string sensorCsv(const SensorFile& file)
         out += ",daylight_factor_pct,daylight_factor_std_err_pct";
     out += "\n";
     for (const SensorRow& r : file.rows) {
-        // Names are quoted when they hold a comma or a quote (RFC 4180).
-        std::string name = r.sensor;
-        if (name.find_first_of(",\"\n\r") != std::string::npos) {
-            std::string q = "\"";
-            for (char ch : name)
-                q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-            name = q + "\"";
-        }
-        out += name + "," + r.cell;
-        for (double v : {r.x, r.y, r.z, r.nx, r.ny, r.nz, r.area, r.illuminance, r.illuminanceStdErr})
+        out += sensorCsvPlace(r);
+        for (double v : {r.illuminance, r.illuminanceStdErr})
             out += "," + num(v);
         if (file.hasDaylightFactor)
             out += "," + num(r.daylightFactor) + "," + num(r.daylightFactorStdErr);

@@ -29,6 +29,9 @@ SensorFile sensorRows(const SensorSet& set, const SensorStatistics& stats, const
 // The rows as CSV. Columns: sensor,cell,x_m,y_m,z_m,nx,ny,nz,area_m2,illuminance_lux,std_err_lux
 // and, with a DF study, daylight_factor_pct,daylight_factor_std_err_pct.
 std::string sensorCsv(const SensorFile& file);
+// A row's first nine fields, sensor,cell,x_m,y_m,z_m,nx,ny,nz,area_m2 (no line end): the start of
+// every per-cell CSV fenestra writes.
+std::string sensorCsvPlace(const SensorRow& r);
 
 // {"NAME": {...}, ...} in the order the sensors were given.
 nlohmann::json sensorSummary(const SensorSet& set, const SensorStatistics& stats,

@@ -8,17 +8,33 @@
 
 namespace fen {
 
-HourSky hourSky(const WeatherFile& file, const WeatherRecord& r, const std::string& what)
+namespace {
+
+// The sun at the middle of the hour ending at r.hour:00, in the file's standard time.
+SolarPosition midHourSun(const WeatherFile& file, const WeatherRecord& r)
 {
-    const std::string where = cat(what, " ", printable(file.path), ":", r.line, " (", r.month, "-", r.day, " hour ", r.hour, ")");
-    // The middle of the hour ending at r.hour:00, in the file's standard time.
     LocalTime t;
     // A typical year's months come from different years; outside the solar algorithm's 1800-2200 a
     // year is taken as 2001 (the sun's path moves by a few thousandths of a degree a decade).
     t.year = r.year >= 1800 && r.year <= 2200 ? r.year : 2001;
     t.month = r.month, t.day = r.day, t.hour = r.hour - 1, t.minute = 30;
     t.utcOffsetMinutes = static_cast<int>(std::lround(file.timeZoneHours * 60.0));
-    const SolarPosition p = solarPosition(file.latitudeDeg, file.longitudeDeg, t);
+    return solarPosition(file.latitudeDeg, file.longitudeDeg, t);
+}
+
+}  // namespace
+
+bool hourIsDark(const WeatherFile& file, const WeatherRecord& r)
+{
+    return !(midHourSun(file, r).apparentAltitudeDeg > 0.0) ||
+           (r.diffuseHorizontal_W_m2 && !(*r.diffuseHorizontal_W_m2 > 0.0)) ||
+           (r.diffuseHorizontal_lux && !(*r.diffuseHorizontal_lux > 0.0));
+}
+
+HourSky hourSky(const WeatherFile& file, const WeatherRecord& r, const std::string& what)
+{
+    const std::string where = cat(what, " ", printable(file.path), ":", r.line, " (", r.month, "-", r.day, " hour ", r.hour, ")");
+    const SolarPosition p = midHourSun(file, r);
     if (!(p.apparentAltitudeDeg > 0.0))
         throw Error(cat(where, ": the sun is ", -p.apparentAltitudeDeg,
                         " degrees below the horizon at the middle of the hour; fenestra renders daylight"));

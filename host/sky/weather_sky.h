@@ -24,6 +24,10 @@ struct HourSky {
 // Throws a one-line fen::Error naming `what` and the record when the hour has no daylight to
 // render (the sun below the horizon at its middle, or no diffuse light).
 HourSky hourSky(const WeatherFile& file, const WeatherRecord& record, const std::string& what);
+// Whether the hour has no daylight: the sun below the horizon at its middle, or a diffuse
+// horizontal irradiance or illuminance of 0 (an hour hourSky() refuses for having nothing to render,
+// not for what its record lacks).
+bool hourIsDark(const WeatherFile& file, const WeatherRecord& record);
 
 // "MM-DD:HH" (HH 1..24, the hour ending then) -> month, day, hour; fen::Error naming `option`.
 void parseWeatherHour(const std::string& text, const std::string& option, int* month, int* day, int* hour);

@@ -21,6 +21,7 @@
 #define FEN_EMIT_KERNEL_H
 
 #include "lib/group_count.h"
+#include "lib/sky_patch.h"
 
 kernel void emit_paths(global const RenderParams* params, volatile global ulong* counters,
                        global PathState* paths, FEN_EMITTER_ARGS)
@@ -37,8 +38,10 @@ kernel void emit_paths(global const RenderParams* params, volatile global ulong*
         const FEN_EMITTER_TYPE emitter = FEN_EMITTER_MAKE;
         PathState p;
         emitted = FEN_EMITTER_EMIT(params, &emitter, path, &p);
-        if (emitted)
+        if (emitted) {
+            path_tag_sky_patch(&p);
             paths[i] = p;
+        }
     }
     group_count_add(counters + FEN_CTR_EMITTED, (uint)emitted, &group_count);
 #else
@@ -48,6 +51,7 @@ kernel void emit_paths(global const RenderParams* params, volatile global ulong*
     const FEN_EMITTER_TYPE emitter = FEN_EMITTER_MAKE;
     PathState p;
     FEN_EMITTER_EMIT(params, &emitter, path, &p);
+    path_tag_sky_patch(&p);
     paths[i] = p;
 #endif
 }

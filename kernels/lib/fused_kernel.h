@@ -60,6 +60,7 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
 #else
             FEN_EMITTER_EMIT(params, &emitter, path, &p);
 #endif
+            path_tag_sky_patch(&p);
             ++emitted;
             SplitState split; /* read only under FEN_PATH_SPLIT, which shade_path() sets with it */
             for (;;) {
@@ -68,7 +69,7 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
 #ifdef FEN_HAS_SENSORS
                 sensor_record(&sensors, p.org.xyz, p.dir.xyz,
                               as_uint(h.normal.w) != FEN_INVALID_ID ? distance(h.pos.xyz, p.org.xyz) : INFINITY,
-                              p.beta, counters);
+                              p.beta, p.flags, counters);
 #endif
                 if (as_uint(h.normal.w) == FEN_INVALID_ID) {
                     if (next_branch(params, &guide, &p, &split, &sm, cam, &tally, counters))

@@ -11,6 +11,10 @@
  * complement's estimate-only paths (FEN_PART_ESTIMATE_ONLY) add nothing, as they add nothing to
  * pixels. Cost: one plane test per sensor plane and segment; a crossing looks in one bucket.
  * Overflows of the 128-bit range are counted (FEN_CTR_OVERFLOWS) and must stay zero.
+ * With daylight coefficients (info->patches > 0: shared/fen_sensor.h), a crossing also goes to its
+ * cell's entry for the sky patch its path started from (the path's flags: lib/sky_patch.h), and,
+ * if no diffuse surface has scattered the path yet (FEN_PATH_BRANCHED unset: it came from the sky
+ * through nothing but glass), to the direct-light matrix -- what annual sunlight exposure counts.
  * Built with -DFEN_SENSOR_STATS (a learning strategy in a render with no image), each crossing's
  * illuminance over pi -- a luminance, the unit the pixels' statistics are kept in -- also goes to
  * the emission cell the path started in (lib/accumulate.h cell_stats_add), so that the strategy
@@ -24,6 +28,7 @@
 
 #include "lib/accumulate.h"
 #include "lib/sampling.h"
+#include "shared/fen_render.h"
 #include "shared/fen_sensor.h"
 
 typedef struct {
@@ -39,7 +44,7 @@ typedef struct {
 } Sensors;
 
 static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float t_max, float4 beta,
-                                 volatile global ulong* counters)
+                                 uint path_flags, volatile global ulong* counters)
 {
     const uint planes = s->info->planes;
     if (planes == 0u || (as_uint(beta.w) & FEN_PART_ESTIMATE_ONLY))
@@ -48,6 +53,9 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
     if (!(flux > 0.0f))
         return;
     const float scale = s->info->fixed_scale;
+    const uint cells = s->info->cells, patches = s->info->patches;
+    const uint patch = path_flags >> FEN_PATH_PATCH_SHIFT;
+    const int direct = !(path_flags & FEN_PATH_BRANCHED);
     for (uint k = 0; k < planes; ++k) {
         const global DevSensorPlane* pl = s->planes + k;
         const float3 n = pl->normal.xyz;
@@ -70,8 +78,18 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
             /* half-open squares: a point on a shared edge belongs to one cell */
             const float du = u - cell.u, dv = v - cell.v;
             if (du >= -cell.half_side && du < cell.half_side && dv >= -cell.half_side && dv < cell.half_side) {
-                if (!fixed_add128(s->accum + 2 * (ulong)c, flux * cell.inv_area * scale))
+                const float e = flux * cell.inv_area * scale;
+                if (!fixed_add128(s->accum + 2 * (ulong)c, e))
                     counter_add(counters, FEN_CTR_OVERFLOWS, 1);
+                if (patches) {
+                    /* the daylight coefficients: by the sky patch the path left (patch < patches:
+                       lib/sky_patch.h), and again while no diffuse surface has scattered it */
+                    const ulong row = (ulong)cells + (ulong)c * patches + patch;
+                    if (!fixed_add128(s->accum + 2 * row, e))
+                        counter_add(counters, FEN_CTR_OVERFLOWS, 1);
+                    if (direct && !fixed_add128(s->accum + 2 * (row + (ulong)cells * patches), e))
+                        counter_add(counters, FEN_CTR_OVERFLOWS, 1);
+                }
 #ifdef FEN_SENSOR_STATS
                 const float l = flux * cell.inv_area * (1.0f / FEN_PI) * s->steer[c];
                 cell_stats_add(s->cell_stats, as_uint(beta.w) & ~FEN_PART_ESTIMATE_ONLY, (float3)(l),

@@ -23,6 +23,10 @@
 #define FEN_PATH_ALIVE 1u
 #define FEN_PATH_SPLIT 2u     /* branches of a split wait in the path's SplitState (lib/shade_path.h) */
 #define FEN_PATH_BRANCHED 4u  /* past its first diffuse vertex: a path splits there or never */
+/* Bits from FEN_PATH_PATCH_SHIFT up: the sky patch the path started from, in a daylight-coefficient
+   run (lib/sky_patch.h; set at emission, kept by every later step, which only sets and clears the
+   bits below) */
+#define FEN_PATH_PATCH_SHIFT 8u
 
 /* Counters (fen_u64 each), read back after every iteration. */
 #define FEN_CTR_NEXT_PATH 0        /* next path index to emit (the emit kernel's ticket) */

@@ -12,6 +12,9 @@
  *     every bucket its square overlaps, so a crossing point looks in one bucket only.
  * Accumulators: two fen_u64 per cell (128-bit fixed point, lib/accumulate.h) of the illuminance
  * sum(Y(beta)) / area x fixed_scale -- lux x paths; the host divides by paths and the scale.
+ * With daylight coefficients (info.patches > 0, DESIGN.md §8 "Daylight coefficients") two matrices
+ * of cells x patches such sums follow them, row-major by cell: every crossing by the patch its path
+ * started from, then the same for the light that has met no diffuse surface yet (direct light).
  * Invariants: struct sizes multiples of 16 bytes; listed in fen_layout.h for the layout probe.
  */
 #ifndef FEN_SENSOR_H
@@ -45,7 +48,7 @@ typedef struct {
     fen_u32 planes;       /* 0: no sensors */
     fen_u32 cells;
     fen_f32 fixed_scale;  /* accumulators hold round(lux x paths x fixed_scale) */
-    fen_u32 pad;
+    fen_u32 patches;      /* sky patches of the daylight-coefficient matrices; 0: none */
 } DevSensorInfo;
 FEN_ASSERT_SIZE(DevSensorInfo, 16);
 

@@ -1,0 +1,207 @@
+// annual_study.cpp — annual metrics from daylight coefficients (annual_study.h).
+#include "annual/annual_study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <thread>
+
+#include <glm/geometric.hpp>
+
+#include "annual/sky_patches.h"
+#include "sky/perez_sky.h"
+#include "sky/weather_sky.h"
+#include "util/error.h"
+
+namespace fen {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+glm::dvec3 towards(double altDeg, double aziDeg)
+{
+    const double c = std::cos(altDeg * kDeg);
+    return {c * std::sin(aziDeg * kDeg), std::sin(altDeg * kDeg), -c * std::cos(aziDeg * kDeg)};
+}
+
+// work(first, last) over [0, n) in one share per hardware thread, each on its own thread: for
+// items that write only their own results.
+void inShares(std::size_t n, const std::function<void(std::size_t, std::size_t)>& work)
+{
+    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < threads; ++t)
+        pool.emplace_back(work, n * t / threads, n * (t + 1) / threads);
+    for (std::thread& t : pool)
+        t.join();
+}
+
+// Whether the record's hour (ending at r.hour) lies within the occupied hours.
+bool occupied(const WeatherRecord& r, const AnnualSettings& s)
+{
+    return r.hour - 1 >= s.occupiedFrom && r.hour <= s.occupiedTo;
+}
+
+}  // namespace
+
+AnnualSkies annualSkies(const WeatherFile& file, const AnnualSettings& s)
+{
+    AnnualSkies out;
+    out.patches = skyPatchCount(s.mf);
+    const std::vector<double> projected = patchProjectedSolidAngles(s.mf);
+    const std::vector<SkyPatch> patches = skyPatches(s.mf);
+    // The hours first (cheap: the sun's position and the sky's condition), in the file's order.
+    std::vector<HourSky> hours;
+    for (const WeatherRecord& r : file.records) {
+        if (!occupied(r, s))
+            continue;
+        ++out.occupiedHours;
+        if (hourIsDark(file, r)) {
+            ++out.darkHours;
+            continue;
+        }
+        try {
+            hours.push_back(hourSky(file, r, "--annual"));
+        } catch (const Error& e) {
+            // A daylight hour whose record lacks what its sky needs: taken as dark, and reported.
+            if (out.missingHours++ == 0)
+                out.firstMissing = e.what();
+            continue;
+        }
+        char label[16];
+        std::snprintf(label, sizeof label, "%02d-%02d:%02d", r.month, r.day, r.hour);
+        out.hourLabel.emplace_back(label);
+    }
+    // Then their patch skies, shared between the machine's threads (each hour its own slot).
+    const std::size_t n = hours.size();
+    out.sky.resize(n);
+    out.sunPatch.assign(n, 0);
+    out.sunLuminance.assign(n, 0.0);
+    std::vector<char> fallback(n, 0);
+    const auto work = [&](std::size_t first, std::size_t last) {
+        for (std::size_t k = first; k < last; ++k) {
+            const HourSky& h = hours[k];
+            const glm::dvec3 sun = towards(h.sunAltitudeDeg, h.sunAzimuthDeg);
+            // The Perez sky (perez_sky.h) straight from its formula at each patch's points,
+            // scaled so that the patches give the hour's diffuse horizontal illuminance.
+            const double z = (90.0 - h.sunAltitudeDeg) * kDeg;
+            const CieSkyType co = perezCoefficients(z, h.condition);
+            std::vector<double> v;
+            if (perezLuminanceBounded(co)) {
+                v = patchMeans([&](const glm::dvec3& d) {
+                    return perezRelativeLuminance(co, z, std::acos(std::clamp(d.y, -1.0, 1.0)),
+                                                  std::acos(std::clamp(glm::dot(d, sun), -1.0, 1.0)));
+                }, s.mf);
+            } else {
+                v.assign(out.patches, 1.0);
+                fallback[k] = 1;
+            }
+            double horizontal = 0.0;
+            for (std::size_t p = 1; p < v.size(); ++p)
+                horizontal += v[p] * projected[p];
+            for (double& x : v)
+                x *= h.diffuseHorizontal_lux / horizontal;
+            const double global_lux = h.diffuseHorizontal_lux + h.sunNormal_lux * std::max(0.0, sun.y);
+            v[0] = s.groundAlbedo * global_lux / M_PI;
+            if (h.sunNormal_lux > 0.0) {
+                // the sun's normal illuminance over the solid angle of the patch it stands in
+                const std::size_t p = skyPatchOf(sun, s.mf);
+                out.sunPatch[k] = p;
+                out.sunLuminance[k] = h.sunNormal_lux / patches[p].solidAngle_sr;
+                v[p] += out.sunLuminance[k];
+            }
+            out.sky[k] = std::move(v);
+        }
+    };
+    inShares(n, work);
+    for (char f : fallback)
+        out.fallbackHours += f;
+    return out;
+}
+
+AnnualResult annualStudy(const std::vector<double>& coefficients, const std::vector<double>& stdErr,
+                         const std::vector<double>& area_m2, const AnnualSkies& skies, const AnnualSettings& s)
+{
+    const std::size_t cells = area_m2.size(), P = skies.patches, hours = skies.sky.size();
+    if (coefficients.size() != 2 * cells * P || stdErr.size() != coefficients.size())
+        throw Error(cat("annual study: coefficient matrices of ", coefficients.size(), " entries for ", cells,
+                        " cells and ", P, " patches"));
+    // The mean patch vector over the occupied hours (dark ones count as zero).
+    std::vector<double> meanSky(P, 0.0);
+    const double occupied = std::max(1, skies.occupiedHours);
+    for (const auto& v : skies.sky)
+        for (std::size_t p = 0; p < P; ++p)
+            meanSky[p] += v[p] / occupied;
+    AnnualResult res;
+    res.cells.resize(cells);
+    std::vector<double> noiseSq(cells, 0.0), signalSq(cells, 0.0);
+    // Cells are independent: shared between the machine's threads, each writing its own.
+    const auto work = [&](std::size_t first, std::size_t last) {
+        std::vector<double> var(P);
+        for (std::size_t c = first; c < last; ++c) {
+            const double* D = coefficients.data() + c * P;
+            const double* Dd = coefficients.data() + (cells + c) * P;
+            const double* E = stdErr.data() + c * P;
+            for (std::size_t p = 0; p < P; ++p)
+                var[p] = E[p] * E[p];
+            AnnualCell& out = res.cells[c];
+            int da = 0, low = 0, useful = 0, high = 0, ase = 0;
+            double sum = 0.0;
+            for (std::size_t h = 0; h < hours; ++h) {
+                const double* v = skies.sky[h].data();
+                double e = 0.0, n = 0.0;
+                for (std::size_t p = 0; p < P; ++p) {
+                    e += D[p] * v[p];
+                    n += var[p] * v[p] * v[p];
+                }
+                sum += e;
+                noiseSq[c] += n;
+                signalSq[c] += e * e;
+                da += e >= s.daLux;
+                low += e < s.udiLow_lux;
+                useful += e >= s.udiLow_lux && e <= s.udiHigh_lux;
+                high += e > s.udiHigh_lux;
+                if (skies.sunPatch[h] && Dd[skies.sunPatch[h]] * skies.sunLuminance[h] >= s.aseLux)
+                    ++ase;
+            }
+            low += skies.occupiedHours - static_cast<int>(hours);  // the dark hours
+            out.mean_lux = sum / occupied;
+            double m = 0.0;
+            for (std::size_t p = 0; p < P; ++p)
+                m += meanSky[p] * meanSky[p] * var[p];
+            out.meanStdErr_lux = std::sqrt(m);
+            out.da_pct = 100.0 * da / occupied;
+            out.udiLow_pct = 100.0 * low / occupied;
+            out.udiUseful_pct = 100.0 * useful / occupied;
+            out.udiHigh_pct = 100.0 * high / occupied;
+            out.aseHours = ase;
+        }
+    };
+    inShares(cells, work);
+    double area = 0.0, sdaArea = 0.0, aseArea = 0.0, noise = 0.0, signal = 0.0;
+    for (std::size_t c = 0; c < cells; ++c) {
+        const AnnualCell& cell = res.cells[c];
+        const double a = area_m2[c];
+        area += a;
+        sdaArea += cell.da_pct >= s.sdaSharePct ? a : 0.0;
+        aseArea += cell.aseHours > s.aseHours ? a : 0.0;
+        res.meanDa_pct += cell.da_pct * a;
+        res.meanUdiUseful_pct += cell.udiUseful_pct * a;
+        res.mean_lux += cell.mean_lux * a;
+        noise += noiseSq[c];
+        signal += signalSq[c];
+    }
+    if (area > 0.0) {
+        res.sda_pct = 100.0 * sdaArea / area;
+        res.ase_pct = 100.0 * aseArea / area;
+        res.meanDa_pct /= area;
+        res.meanUdiUseful_pct /= area;
+        res.mean_lux /= area;
+    }
+    res.hourlyNoise_rel = signal > 0.0 ? std::sqrt(noise / signal) : 0.0;
+    return res;
+}
+
+}  // namespace fen

@@ -1,0 +1,76 @@
+// annual_study.h — climate-based daylight metrics from daylight coefficients (DESIGN.md §8
+// "Annual daylight"): a weather file's occupied hours turned into patch skies, each hour's
+// illuminance at every sensor cell as the coefficient matrix times the hour's patch vector, and
+// the metrics building codes ask for (IES LM-83; Nabil and Mardaljevic's UDI).
+//
+// Per occupied hour (the weather file's hours ending within [from + 1, to] in its standard time,
+// so 8-18 is 10 hours a day, 3,650 a year): with the sun above the horizon at the middle of the
+// hour and diffuse light, the Perez all-weather sky of the hour (sky/weather_sky.h) averaged over
+// each Reinhart patch, the sun's direct normal illuminance in the patch it stands in, and the
+// ground glowing at rho E_global / pi (sky_patches.h); otherwise dark (0 lux). An hour whose Perez
+// sky would go negative somewhere (the model's fit, far outside its data: gendaylit refuses them
+// too) takes a uniform sky of the same diffuse illuminance instead, and an hour whose record lacks
+// the irradiance is dark; both are counted and reported.
+//   E_s(h)      = sum_p D[s][p] L_p(h)                 all light, every bounce
+//   E_sun,s(h)  = D_direct[s][p_sun] L_sun(h)          the sun's light that met no diffuse surface
+//   DA          = share of occupied hours with E >= daLux              (per cell, %)
+//   sDA         = share of the sensors' area with DA >= sdaShare       (%)
+//   ASE         = share of the area with E_sun >= aseLux for more than aseHours occupied hours (%)
+//   UDI         = shares of occupied hours below udiLow, within [udiLow, udiHigh], above udiHigh
+// Noise: the coefficients' own standard errors (their batches) give each cell's mean illuminance
+// over the occupied hours a standard error, sqrt(sum_p (mean_h L_p)^2 var D[s][p]) (the same
+// coefficients serve every hour), and the hours' illuminance a relative RMS noise.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "io/weather_file.h"
+
+namespace fen {
+
+struct AnnualSettings {
+    int mf = 1;                         // Reinhart subdivision of the coefficients
+    int occupiedFrom = 8, occupiedTo = 18;  // hours of the day, the weather file's standard time
+    double groundAlbedo = 0.2;
+    double daLux = 300.0, sdaSharePct = 50.0;
+    double aseLux = 1000.0, aseHours = 250.0;
+    double udiLow_lux = 100.0, udiHigh_lux = 2000.0;
+};
+
+// The occupied hours' skies as patch vectors.
+struct AnnualSkies {
+    std::size_t patches = 0;
+    std::vector<std::vector<double>> sky;  // per daylit occupied hour: patch luminances (sun included)
+    std::vector<std::size_t> sunPatch;     // ... the sun's patch (0: no sun)
+    std::vector<double> sunLuminance;      // ... and the luminance the sun adds to it (cd/m^2)
+    std::vector<std::string> hourLabel;    // ... "MM-DD:HH"
+    int occupiedHours = 0;   // all, dark ones included: the metrics' denominator
+    int darkHours = 0;       // the sun down (or no diffuse light) at the middle of the hour
+    int fallbackHours = 0;   // a uniform sky in place of a Perez sky that would go negative
+    int missingHours = 0;    // daylight hours without the irradiance to make a sky: taken as dark
+    std::string firstMissing;  // the first of them, for the warning
+};
+AnnualSkies annualSkies(const WeatherFile& file, const AnnualSettings& s);
+
+struct AnnualCell {
+    double mean_lux = 0.0, meanStdErr_lux = 0.0;  // over the occupied hours
+    double da_pct = 0.0;
+    double udiLow_pct = 0.0, udiUseful_pct = 0.0, udiHigh_pct = 0.0;
+    int aseHours = 0;                             // occupied hours of direct sun >= aseLux
+};
+
+struct AnnualResult {
+    std::vector<AnnualCell> cells;
+    double sda_pct = 0.0, ase_pct = 0.0;          // shares of the sensors' area
+    double meanDa_pct = 0.0, meanUdiUseful_pct = 0.0, mean_lux = 0.0;  // area-weighted means
+    double hourlyNoise_rel = 0.0;  // RMS over cells and daylit hours of sd(E) over the RMS of E
+};
+
+// `coefficients`, `stdErr`: the two matrices (all light, then direct), each cells x patches
+// row-major (DeviceSensors::readMatrices); `area_m2` per cell.
+AnnualResult annualStudy(const std::vector<double>& coefficients, const std::vector<double>& stdErr,
+                         const std::vector<double>& area_m2, const AnnualSkies& skies, const AnnualSettings& s);
+
+}  // namespace fen
