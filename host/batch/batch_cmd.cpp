@@ -211,6 +211,13 @@ nlohmann::json jobFigures(const nlohmann::json& r)
                 t[key] = numberOrNull(e, key);
             f["sensors"][name] = t;
         }
+    // an annual study's headline figures
+    if (r.contains("annual") && r["annual"].is_object()) {
+        nlohmann::json a = nlohmann::json::object();
+        for (const char* key : {"sda_pct", "ase_pct", "mean_da_pct", "mean_udi_useful_pct", "mean_lux"})
+            a[key] = numberOrNull(r["annual"], key);
+        f["annual"] = a;
+    }
     return f;
 }
 
@@ -336,7 +343,7 @@ int runBatch(const BatchOptions& options)
     // The summary: every job, run or not.
     nlohmann::json list = nlohmann::json::array();
     std::string csv =
-        "name,status,seconds,paths,mean_luminance_cd_m2,noise_std_err_cd_m2,sensors_mean_lux,json,error\n";
+        "name,status,seconds,paths,mean_luminance_cd_m2,noise_std_err_cd_m2,sensors_mean_lux,sda_pct,ase_pct,json,error\n";
     for (std::size_t i = 0; i < jobs.size(); ++i) {
         Outcome o;
         if (i < outcomes.size())
@@ -346,7 +353,7 @@ int runBatch(const BatchOptions& options)
         nlohmann::json e = {{"name", jobs[i].name}, {"status", o.status}, {"seconds", o.seconds},
                             {"json", o.json.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.json)},
                             {"error", o.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.error)}};
-        std::string paths, mean, noise, sensorMeans;
+        std::string paths, mean, noise, sensorMeans, sda, ase;
         if (o.figures.is_object()) {
             e.update(o.figures);
             paths = std::to_string(o.figures["paths"].get<unsigned long long>());
@@ -358,10 +365,17 @@ int runBatch(const BatchOptions& options)
             for (const auto& [name, t] : o.figures["sensors"].items())
                 if (t["mean_lux"].is_number())
                     sensorMeans += (sensorMeans.empty() ? "" : ";") + name + "=" + number(t["mean_lux"].get<double>());
+            if (o.figures.contains("annual")) {
+                const nlohmann::json& a = o.figures["annual"];
+                if (a["sda_pct"].is_number())
+                    sda = number(a["sda_pct"].get<double>());
+                if (a["ase_pct"].is_number())
+                    ase = number(a["ase_pct"].get<double>());
+            }
         }
         list.push_back(e);
         csv += cat(csvField(jobs[i].name), ",", o.status, ",", number(o.seconds), ",", paths, ",", mean, ",", noise, ",",
-                   csvField(sensorMeans), ",", csvField(o.json), ",", csvField(o.error), "\n");
+                   csvField(sensorMeans), ",", sda, ",", ase, ",", csvField(o.json), ",", csvField(o.error), "\n");
     }
     nlohmann::json summary{{"jobs_file", options.jobsPath}, {"failed", failed}, {"jobs", list}};
     makeUtf8(summary);

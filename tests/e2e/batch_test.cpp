@@ -110,6 +110,36 @@ TEST(CliBatch, JobsWriteTheirRendersBytesAndAFailureDoesNotStopTheRest)
     EXPECT_EQ(statuses(), (std::vector<std::string>{"done", "done", "failed", "done", "done"})) << all.err;
 }
 
+TEST(CliBatch, AnAnnualJobWritesWhatItsRenderWrites)
+{
+    // An annual study in a batch: its coefficients and metrics are the render's, byte for byte, and
+    // the summary carries its sDA and ASE.
+    const std::string dir = test::tempDir("cli-batch-annual");
+    const std::string scenes = std::string(FEN_SCENES_DIR);
+    const std::vector<std::string> args = {scenes + "/room.gltf", "--annual", scenes + "/weather/tmy_45.000_8.000_2005_2016.epw",
+                                           "--work-plane", "floor", "--sensor-spacing", "0.5", "--paths", "400000",
+                                           "--no-progress"};
+    std::vector<std::string> batchArgs = args;
+    batchArgs.insert(batchArgs.end(), {"--out", dir + "/b"});
+    std::ofstream(dir + "/jobs.json") << "{\"jobs\": [{\"name\": \"year\", \"render\": " + quoted(batchArgs) + "}]}";
+    const CliRun b = run("batch " + dir + "/jobs.json");
+    ASSERT_EQ(b.status, 0) << b.err;
+    std::string line = "render";
+    for (const std::string& a : args)
+        line += " '" + a + "'";
+    const CliRun r = run(line + " --out " + dir + "/one");
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* ext : {".dc.mtx", ".dc-direct.mtx", ".annual.csv"}) {
+        const std::string one = slurp(dir + "/one" + ext), batch = slurp(dir + "/b" + ext);
+        EXPECT_FALSE(one.empty()) << ext;
+        EXPECT_TRUE(one == batch) << ext << ": the batch's differs from the render's";
+    }
+    const auto summary = nlohmann::json::parse(slurp(dir + "/jobs.summary.json"));
+    const auto annual = nlohmann::json::parse(slurp(dir + "/one.json"))["annual"];
+    EXPECT_EQ(summary["jobs"][0]["annual"]["sda_pct"], annual["sda_pct"]);
+    EXPECT_EQ(summary["jobs"][0]["annual"]["ase_pct"], annual["ase_pct"]);
+}
+
 TEST(CliBatch, AStopEndsTheJobInFlightAndRunsNoMore)
 {
     // Three long jobs; SIGINT after 3 s: the first stops as a render does (its outputs written,

@@ -3,6 +3,7 @@
 // crash. Plus a smoke run of `devices` and `bench --json`.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -716,6 +717,59 @@ TEST(CliWeather, AnHourOfTheShippedYear)
                 "none.epw: cannot open the weather file");
     expectError(run("render " + scene + out + " --weather " + epw + " --weather-hour 06-21:13 --daylight-factor "
                     "--work-plane floor"), 1, "--daylight-factor is defined under the CIE overcast sky with no sun; leave out --weather");
+}
+
+// An annual study of the shipped room over the shipped year (DESIGN.md §8): its files, its JSON and
+// its one-line errors.
+TEST(CliAnnual, AYearOfTheShippedWeatherOnTheRoom)
+{
+    const std::string epw = std::string(FEN_SCENES_DIR) + "/weather/tmy_45.000_8.000_2005_2016.epw";
+    const std::string scene = std::string(FEN_SCENES_DIR) + "/room.gltf";
+    const std::string dir = test::tempDir("cli-annual");
+    const CliRun r = run("render " + scene + " --out " + dir + "/a --annual " + epw +
+                         " --work-plane floor --sensor-spacing 0.5 --paths 2000000 --no-progress");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("annual: "), std::string::npos) << r.out;
+    const auto j = nlohmann::json::parse(slurp(dir + "/a.json"));
+    const auto& a = j["annual"];
+    ASSERT_TRUE(a.is_object()) << j.dump();
+    EXPECT_EQ(a["occupied_hours"], 3650);
+    EXPECT_EQ(a["sky_patches"], 146);
+    EXPECT_EQ(a["missing_hours"], 0);
+    EXPECT_EQ(a["occupied_hours"].get<int>(), a["daylit_hours"].get<int>() + a["dark_hours"].get<int>());
+    for (const char* k : {"sda_pct", "ase_pct", "mean_da_pct", "mean_udi_useful_pct"}) {
+        EXPECT_GE(a[k].get<double>(), 0.0) << k;
+        EXPECT_LE(a[k].get<double>(), 100.0) << k;
+    }
+    EXPECT_GT(a["mean_lux"].get<double>(), 0.0);
+    EXPECT_EQ(j["sky"]["type"], "uniform");
+    EXPECT_NEAR(j["sky"]["ground_luminance_cd_m2"].get<double>(), 1.0, 1e-12);
+    EXPECT_TRUE(j["sun"].is_null());
+    // One CSV row per cell, the matrices in Radiance's format.
+    const std::string csv = slurp(dir + "/a.annual.csv");
+    const std::size_t cells = j["sensors"]["workplane"]["cells"].get<std::size_t>();
+    EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), cells + 1);
+    EXPECT_EQ(csv.rfind("sensor,cell,x_m,y_m,z_m,nx,ny,nz,area_m2,mean_lux,mean_std_err_lux,da_pct,", 0), 0u);
+    for (const char* m : {"/a.dc.mtx", "/a.dc-direct.mtx"}) {
+        const std::string mtx = slurp(dir + m);
+        EXPECT_EQ(mtx.rfind("#?RADIANCE\n", 0), 0u) << m;
+        EXPECT_NE(mtx.find("NROWS=" + std::to_string(cells) + "\nNCOLS=146\nNCOMP=3\nFORMAT=ascii\n\n"), std::string::npos) << m;
+    }
+    EXPECT_FALSE(slurp(dir + "/a.annual.png").empty());
+    const std::string out = " --out " + dir + "/x --paths 1000 --no-progress";
+    const std::string ann = " --annual " + epw + " --work-plane floor";
+    expectError(run("render " + scene + out + " --sky-patches 2"), 1, "need --annual FILE.epw");
+    expectError(run("render " + scene + out + ann + " --sky-patches 0"), 1, "--sky-patches 0: must be 1..16");
+    expectError(run("render " + scene + out + ann + " --occupied 18-8"), 1, "--occupied '18-8': expected FROM-TO");
+    expectError(run("render " + scene + out + ann + " --udi 2000,100"), 1, "--udi '2000,100': expected LOW,HIGH");
+    expectError(run("render " + scene + out + ann + " --da-lux -3"), 1, "--da-lux -3: must be an illuminance");
+    expectError(run("render " + scene + out + ann + " --sky cie:12"), 1, "--annual takes its skies from the weather file");
+    expectError(run("render " + scene + out + ann + " --daylight-factor"), 1, "--annual and --daylight-factor");
+    expectError(run("render " + scene + out + ann + " --checkpoint " + dir + "/c.ckpt"), 1,
+                "do not carry daylight coefficients");
+    expectError(run("render " + scene + out + " --annual " + dir + "/none.epw --work-plane floor"), 1,
+                "none.epw: cannot open the weather file");
+    expectError(run("render " + scene + out + " --annual " + epw), 1, "--no-image renders sensors alone");
 }
 
 // Textures a scene cannot have: a missing file, bytes that are no image, an image too large.
