@@ -108,10 +108,12 @@ std::vector<double> patchMeans(const std::function<double(const glm::dvec3&)>& l
     const std::vector<SkyPatch> all = skyPatches(mf);
     std::vector<double> out(all.size(), 0.0);
     // The mean over each patch: a midpoint rule in (sin altitude, azimuth), where the solid angle is
-    // uniform, of 8 rows and at least 8 columns, one per degree of azimuth.
+    // uniform, of 8 / MF rows (at least 2; a row is 12 / MF degrees high) and as many columns, or one
+    // per degree of azimuth if more: 8 x 12 points for MF 1's patches, 2 x 2 for MF 16's.
+    const int rows = std::max(2, 8 / mf);
     for (std::size_t k = 1; k < all.size(); ++k) {
         const SkyPatch& p = all[k];
-        const int na = 8, nz = std::max(8, static_cast<int>(std::ceil(p.aziWidthDeg)));
+        const int na = rows, nz = std::max(rows, static_cast<int>(std::ceil(p.aziWidthDeg)));
         const double s0 = std::sin(p.altLoDeg * kDeg), s1 = std::sin(p.altHiDeg * kDeg);
         double sum = 0.0;
         for (int i = 0; i < na; ++i) {

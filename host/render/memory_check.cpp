@@ -30,12 +30,32 @@ MemoryNeeds renderMemoryNeeds(int width, int height, std::uint64_t poolSlots)
     return n;
 }
 
+std::uint64_t physicalMemory(std::uint64_t given)
+{
+    if (given)
+        return given;
+    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+    return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
+}
+
+void checkMemoryNeeds(const MemoryNeeds& n, const ocl::DeviceInfo& device, const std::string& what,
+                      const std::string& advice, std::uint64_t hostBytes)
+{
+    hostBytes = physicalMemory(hostBytes);
+    if (device.maxAllocBytes > 0 && n.largestBufferBytes > device.maxAllocBytes)
+        throw Error(cat(what, " need a buffer of ", gigabytes(n.largestBufferBytes), " on the device, more than its largest (",
+                        gigabytes(device.maxAllocBytes), "): ", advice));
+    if (device.globalMemBytes > 0 && n.deviceBytes > device.globalMemBytes)
+        throw Error(cat(what, " need ", gigabytes(n.deviceBytes), " on the device, more than its ",
+                        gigabytes(device.globalMemBytes), ": ", advice));
+    if (hostBytes > 0 && n.hostBytes > hostBytes)
+        throw Error(cat(what, " need ", gigabytes(n.hostBytes), " of host memory, more than this machine's ",
+                        gigabytes(hostBytes), ": ", advice));
+}
+
 void checkMemoryNeeds(const MemoryNeeds& n, const ocl::DeviceInfo& device, std::uint64_t hostBytes)
 {
-    if (hostBytes == 0) {
-        const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
-        hostBytes = pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
-    }
+    hostBytes = physicalMemory(hostBytes);
     if (device.maxAllocBytes > 0 && n.largestBufferBytes > device.maxAllocBytes)
         throw Error(cat("--width/--height: the image needs a buffer of ", gigabytes(n.largestBufferBytes),
                         " on the device, more than its largest (", gigabytes(device.maxAllocBytes),

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "cl/device.h"
 
@@ -22,5 +23,8 @@ MemoryNeeds renderMemoryNeeds(int width, int height, std::uint64_t poolSlots);
 // Throws fen::Error when `needs` exceeds `device` (its memory, its largest buffer) or the host's
 // physical memory; `hostBytes` 0 asks the system.
 void checkMemoryNeeds(const MemoryNeeds& needs, const ocl::DeviceInfo& device, std::uint64_t hostBytes = 0);
+// The same for another part of a render: errors say "<what> need ..." and end with `advice`.
+void checkMemoryNeeds(const MemoryNeeds& needs, const ocl::DeviceInfo& device, const std::string& what,
+                      const std::string& advice, std::uint64_t hostBytes = 0);
 
 }  // namespace fen

@@ -165,7 +165,6 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     std::optional<AnnualSkies> annualSkyVectors;
     if (opt.annual.weather) {
         annualWeather = readWeatherFile(*opt.annual.weather);
-        annualSkyVectors = annualSkies(*annualWeather, opt.annual.settings);
         scene.sun.present = false;
         scene.sky = SkySpec{};
         scene.sky.type = SkySpec::Type::Uniform;
@@ -271,6 +270,20 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
                                        opt.poolSize ? static_cast<std::uint64_t>(*opt.poolSize)
                                                     : defaultPoolSlots(ctx.info())),
                      ctx.info());
+    if (opt.annual.weather) {
+        // The daylight coefficients: two cells x patches matrices of 128-bit sums on the device
+        // (one buffer with the cells'); on the host each batch's read-back (16 + 8 bytes an entry)
+        // and the weighted sums, mean and standard error (8 bytes each).
+        const std::uint64_t entries = 2ull * sensors.cells.size() * skyPatchCount(opt.annual.settings.mf);
+        MemoryNeeds m;
+        m.deviceBytes = m.largestBufferBytes = (entries + sensors.cells.size()) * 16;
+        m.hostBytes = entries * (24 + 4 * 8);
+        checkMemoryNeeds(m, ctx.info(), cat("--annual: the daylight coefficients of ", sensors.cells.size(), " cells x ",
+                                            skyPatchCount(opt.annual.settings.mf), " sky patches"),
+                         "use a smaller --sky-patches, or fewer sensor cells");
+    }
+    if (opt.annual.weather)
+        annualSkyVectors = annualSkies(*annualWeather, opt.annual.settings);  // before the render: seconds
     RenderSettings settings;
     settings.emission = emission;
     settings.paths = static_cast<std::uint64_t>(opt.paths.value_or(0));

@@ -10,13 +10,12 @@ namespace fen {
 
 void SensorStatistics::add(const std::vector<double>& lux, double w)
 {
-    std::vector<float> b(cells_);
     for (std::size_t c = 0; c < cells_; ++c) {
         sum_[c] += w * lux[c];
         sumSq_[c] += w * lux[c] * lux[c];
-        b[c] = static_cast<float>(lux[c]);
     }
-    batches_.push_back(std::move(b));
+    if (keepBatches_)
+        batches_.emplace_back(lux.begin(), lux.end());
     weights_.push_back(w);
     weight_ += w;
 }
@@ -49,7 +48,7 @@ SensorStatistics::Estimate SensorStatistics::jackknife(const std::function<doubl
     Estimate e;
     e.value = f(mean());
     const std::size_t B = weights_.size();
-    if (B < 2)
+    if (B < 2 || !keepBatches_)
         return e;
     std::vector<double> loo(B), m(cells_);
     double avg = 0.0;

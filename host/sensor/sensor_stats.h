@@ -20,7 +20,11 @@ class StateWriter;
 
 class SensorStatistics {
 public:
-    explicit SensorStatistics(std::size_t cells) : cells_(cells), sum_(cells, 0.0), sumSq_(cells, 0.0) {}
+    // keepBatches false: only the weighted sums are kept (mean, stdErr), not each batch (no
+    // jackknife, no mapped(), no save): for the daylight-coefficient matrices, whose copies per
+    // batch would take 16 x cells x patches floats.
+    explicit SensorStatistics(std::size_t cells, bool keepBatches = true)
+        : cells_(cells), keepBatches_(keepBatches), sum_(cells, 0.0), sumSq_(cells, 0.0) {}
     void add(const std::vector<double>& lux, double weight = 1.0);
     std::size_t cells() const { return cells_; }
     int batches() const { return static_cast<int>(weights_.size()); }
@@ -42,6 +46,7 @@ public:
 
 private:
     std::size_t cells_;
+    bool keepBatches_ = true;
     std::vector<double> sum_, sumSq_;  // weighted
     std::vector<std::vector<float>> batches_;
     std::vector<double> weights_;

@@ -770,6 +770,9 @@ TEST(CliAnnual, AYearOfTheShippedWeatherOnTheRoom)
     expectError(run("render " + scene + out + " --annual " + dir + "/none.epw --work-plane floor"), 1,
                 "none.epw: cannot open the weather file");
     expectError(run("render " + scene + out + " --annual " + epw), 1, "--no-image renders sensors alone");
+    // 200,000 cells x 36,866 patches: 236 GB of sums, refused before anything is computed
+    expectError(run("render " + scene + out + ann + " --sensor-spacing 0.01 --sky-patches 16"), 1,
+                "--annual: the daylight coefficients of 200000 cells x 36866 sky patches need");
 }
 
 // Textures a scene cannot have: a missing file, bytes that are no image, an image too large.
