@@ -21,6 +21,8 @@ void addAnnualOptions(CLI::App* r, AnnualOptions* o)
     r->add_option("--ase-lux", o->aseLux, "Annual sunlight exposure threshold, direct sun lux (default 1000)");
     r->add_option("--ase-hours", o->aseHours, "ASE: occupied hours above --ase-lux a cell may have (default 250)");
     r->add_option("--udi", o->udi, "Useful daylight illuminance band LOW,HIGH, lux (default 100,2000)");
+    r->add_option("--annual-learning", o->learning,
+                  "What adaptive emission learns the coefficients for: year (the year's mean sky, default) | unit");
 }
 
 namespace {
@@ -48,11 +50,11 @@ bool parsePair(const std::string& text, char sep, double* a, double* b)
 
 void validateAnnualOptions(AnnualOptions& o, const SkySunOptions& skySun, SensorOptions& sensors, bool hasCheckpoint)
 {
-    const bool tuned = o.mf || o.occupied || o.daLux || o.sdaShare || o.aseLux || o.aseHours || o.udi;
+    const bool tuned = o.mf || o.occupied || o.daLux || o.sdaShare || o.aseLux || o.aseHours || o.udi || o.learning;
     if (!o.weather) {
         if (tuned)
-            throw Error("--sky-patches, --occupied, --da-lux, --sda-share, --ase-lux, --ase-hours and --udi need "
-                        "--annual FILE.epw");
+            throw Error("--sky-patches, --occupied, --da-lux, --sda-share, --ase-lux, --ase-hours, --udi and "
+                        "--annual-learning need --annual FILE.epw");
         return;
     }
     if (o.weather->empty())
@@ -103,6 +105,11 @@ void validateAnnualOptions(AnnualOptions& o, const SkySunOptions& skySun, Sensor
             throw Error(cat("--udi '", printable(*o.udi, 40), "': expected LOW,HIGH in lux with 0 <= LOW < HIGH (e.g. 100,2000)"));
         s.udiLow_lux = a;
         s.udiHigh_lux = b;
+    }
+    if (o.learning) {
+        if (*o.learning != "year" && *o.learning != "unit")
+            throw Error(cat("--annual-learning '", printable(*o.learning, 40), "': expected year or unit"));
+        s.learnForYear = *o.learning == "year";
     }
     s.groundAlbedo = skySun.groundAlbedo.value_or(0.2);
     sensors.noImage = true;

@@ -7,6 +7,9 @@
 //   --sda-share PCT           the DA a cell needs to count towards sDA (default 50)
 //   --ase-lux LUX, --ase-hours H   annual sunlight exposure's thresholds (default 1000 lux, 250 h)
 //   --udi LOW,HIGH            useful daylight illuminance's band (default 100,2000 lux)
+//   --annual-learning year|unit   what adaptive emission learns the coefficients for: the year's
+//                             mean sky (default), or the unit sky (coefficients to reuse with other
+//                             weather: no patch favoured)
 // An annual study renders the sensors alone under a sky of 1 cd/m^2 everywhere (the ground too) and
 // no sun; so it takes no sky, sun, weather hour or daylight-factor option, and no checkpoint.
 // --ground-albedo sets the ground's reflectance in the hours' skies (default 0.2, as Radiance's
@@ -32,6 +35,7 @@ struct AnnualOptions {
     std::optional<std::string> occupied;
     std::optional<double> daLux, sdaShare, aseLux, aseHours;
     std::optional<std::string> udi;
+    std::optional<std::string> learning;
     AnnualSettings settings;             // from the above (validateAnnualOptions)
 };
 

@@ -123,6 +123,7 @@ nlohmann::json writeAnnual(const SensorSet& sensors, const SensorStatistics& coe
         {"uniform_sky_hours", skies.fallbackHours},
         {"missing_hours", skies.missingHours},
         {"ground_albedo", s.groundAlbedo},
+        {"learning", s.learnForYear ? "year" : "unit"},
         {"thresholds",
          {{"da_lux", s.daLux},
           {"sda_share_pct", s.sdaSharePct},

@@ -121,6 +121,25 @@ AnnualSkies annualSkies(const WeatherFile& file, const AnnualSettings& s)
     return out;
 }
 
+std::vector<double> annualPatchWeights(const AnnualSkies& skies, int mf)
+{
+    const std::vector<double> proj = patchProjectedSolidAngles(mf);
+    std::vector<double> w(skies.patches, 0.0);
+    for (const auto& v : skies.sky)
+        for (std::size_t p = 0; p < w.size(); ++p)
+            w[p] += v[p];
+    double horizontal = 0.0, mean = 0.0;
+    for (std::size_t p = 0; p < w.size(); ++p) {
+        horizontal += w[p] * proj[p];
+        mean += w[p] / static_cast<double>(w.size());
+    }
+    if (!(horizontal > 0.0))
+        return std::vector<double>(w.size(), 1.0);  // no daylight at all: the unit sky
+    for (double& x : w)
+        x = std::max(x, 1e-3 * mean) * M_PI / horizontal;
+    return w;
+}
+
 AnnualResult annualStudy(const std::vector<double>& coefficients, const std::vector<double>& stdErr,
                          const std::vector<double>& area_m2, const AnnualSkies& skies, const AnnualSettings& s)
 {

@@ -37,6 +37,7 @@ struct AnnualSettings {
     double daLux = 300.0, sdaSharePct = 50.0;
     double aseLux = 1000.0, aseHours = 250.0;
     double udiLow_lux = 100.0, udiHigh_lux = 2000.0;
+    bool learnForYear = true;  // adaptive emission learns for the year's mean sky (annualPatchWeights)
 };
 
 // The occupied hours' skies as patch vectors.
@@ -53,6 +54,11 @@ struct AnnualSkies {
     std::string firstMissing;  // the first of them, for the warning
 };
 AnnualSkies annualSkies(const WeatherFile& file, const AnnualSettings& s);
+
+// Each patch's weight for what a learning strategy learns (RenderSettings::skyPatchWeights): the
+// occupied hours' mean patch luminance, scaled so that its horizontal illuminance is the unit sky's
+// (pi lux); every patch at least 10^-3 of the mean, so that none is left unlearned.
+std::vector<double> annualPatchWeights(const AnnualSkies& skies, int mf);
 
 struct AnnualCell {
     double mean_lux = 0.0, meanStdErr_lux = 0.0;  // over the occupied hours

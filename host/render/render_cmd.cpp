@@ -306,6 +306,8 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     settings.sensors = &sensors;
     settings.noImage = noImage;
     settings.skyPatchMF = opt.annual.weather ? opt.annual.settings.mf : 0;
+    if (annualSkyVectors && opt.annual.settings.learnForYear)
+        settings.skyPatchWeights = annualPatchWeights(*annualSkyVectors, opt.annual.settings.mf);
     for (const auto& reg : regions)
         settings.rois.push_back(reg.second);
     settings.checkpointPath = checkpointPath;

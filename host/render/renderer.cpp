@@ -105,6 +105,12 @@ struct Renderer::Impl {
     {
         if (st.skyPatchMF > 0 && (!st.checkpointPath.empty() || !st.resumePath.empty()))
             throw Error("--checkpoint and --resume do not carry daylight coefficients: an annual study runs in one go");
+        if (sensors.patches() && !st.skyPatchWeights.empty()) {
+            if (st.skyPatchWeights.size() != sensors.patches())
+                throw Error(cat("internal error: ", st.skyPatchWeights.size(), " patch weights for ", sensors.patches(),
+                                " patches"));
+            sensors.setPatchWeights(std::vector<float>(st.skyPatchWeights.begin(), st.skyPatchWeights.end()));
+        }
         film.setCameraSamples(cameraSampler.counts());
         camera = cam;
         if (!st.checkpointPath.empty() || !st.resumePath.empty())

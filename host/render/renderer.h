@@ -83,6 +83,10 @@ struct RenderSettings {
     // the Reinhart patch (this MF) it left the sky by, and the sensors also sum by patch. The sky
     // should then have a known luminance everywhere (the annual study's: 1 cd/m^2, ground too).
     int skyPatchMF = 0;
+    // With skyPatchMF: each patch's luminance in the sky the coefficients are for (an annual
+    // study's mean sky), which weighs what a learning strategy learns from the sensors (lib/sensor.h);
+    // empty: the unit sky's (all 1).
+    std::vector<double> skyPatchWeights;
     std::function<void(const BatchProgress&)> onBatch;  // optional
     // Set (by a signal handler) to stop: the batch in flight finishes and the render ends with the
     // batches done -- at least one, so the image is valid.

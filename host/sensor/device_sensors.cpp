@@ -129,7 +129,8 @@ void DeviceSensors::upload(ocl::Context& ctx, const SensorTables& t)
     bucketCells_ = make(t.bucketCells, "sensor bucket cells");
     accum_ = ctx.buffer(CL_MEM_READ_WRITE, accumWords() * 8,
                         patches_ ? "sensor accumulators and daylight coefficients" : "sensor accumulators");
-    const std::vector<float> ones(std::max<std::size_t>(cells_, 1), 1.0f);
+    // per cell, then (with daylight coefficients) per sky patch: 1 until set
+    const std::vector<float> ones(std::max<std::size_t>(cells_ + patches_, 1), 1.0f);
     steer_ = ctx.buffer(CL_MEM_READ_ONLY, ones.size() * 4, "sensor steering", ones.data());
     clear();
 }
@@ -138,6 +139,12 @@ void DeviceSensors::setSteer(const std::vector<float>& perCell)
 {
     if (perCell.size() == cells_ && cells_ > 0)
         ctx_.queue().enqueueWriteBuffer(steer_, CL_TRUE, 0, cells_ * 4, perCell.data());
+}
+
+void DeviceSensors::setPatchWeights(const std::vector<float>& perPatch)
+{
+    if (perPatch.size() == patches_ && patches_ > 0)
+        ctx_.queue().enqueueWriteBuffer(steer_, CL_TRUE, cells_ * 4, patches_ * 4, perPatch.data());
 }
 
 void DeviceSensors::clear()

@@ -51,6 +51,10 @@ public:
     // (the absolute target) until setSteer() says otherwise.
     const cl::Buffer& steer() const { return steer_; }
     void setSteer(const std::vector<float>& perCell);
+    // With daylight coefficients, each sky patch's factor on what a crossing adds to a learning
+    // strategy's statistics (lib/sensor.h): the luminance of the sky the learning is for, per
+    // patch (1 each until set: the unit sky).
+    void setPatchWeights(const std::vector<float>& perPatch);
 
     void clear();
     // Each cell's illuminance over `paths` paths (lux): accumulators / (scale x paths).

@@ -21,7 +21,10 @@
  * learns where the light the sensors see comes from: by default the absolute target, the sum of
  * the cells' variances, which is what a grid's RMS error measures; with the strategy's relative
  * target each cell's share is scaled by its steer factor (about the grid's mean over the cell's
- * own illuminance: render/renderer.cpp), so that a dim room counts as much as a bright one.
+ * own illuminance: render/renderer.cpp), so that a dim room counts as much as a bright one. With
+ * daylight coefficients each crossing's share is also weighted by its patch's luminance in the sky
+ * the coefficients are for (an annual study: the year's mean sky), so that the strategy learns where
+ * that sky's light comes from though the run renders a sky of 1 cd/m^2.
  */
 #ifndef FEN_SENSOR_LIB_H
 #define FEN_SENSOR_LIB_H
@@ -39,7 +42,8 @@ typedef struct {
     global const uint* bucket_cells;
     volatile global ulong* accum;  /* 2 words per cell */
     volatile global ulong* cell_stats;  /* the strategy's statistics (FEN_SENSOR_STATS only) */
-    global const float* steer;          /* per cell: the factor on what it adds to them (1: absolute) */
+    global const float* steer;          /* per cell: the factor on what it adds to them (1: absolute);
+                                           then, with daylight coefficients, per sky patch */
     float stats_fixed_scale, stats_scale;
 } Sensors;
 
@@ -91,7 +95,10 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
                         counter_add(counters, FEN_CTR_OVERFLOWS, 1);
                 }
 #ifdef FEN_SENSOR_STATS
-                const float l = flux * cell.inv_area * (1.0f / FEN_PI) * s->steer[c];
+                /* with daylight coefficients, times the patch's weight (steer[cells + patch]): the
+                   statistics of the sky the learning is for, not of the unit sky rendered */
+                const float l = flux * cell.inv_area * (1.0f / FEN_PI) * s->steer[c] *
+                                (patches ? s->steer[cells + patch] : 1.0f);
                 cell_stats_add(s->cell_stats, as_uint(beta.w) & ~FEN_PART_ESTIMATE_ONLY, (float3)(l),
                                s->stats_fixed_scale, s->stats_scale, counters);
 #endif

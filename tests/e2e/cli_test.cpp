@@ -736,6 +736,7 @@ TEST(CliAnnual, AYearOfTheShippedWeatherOnTheRoom)
     EXPECT_EQ(a["occupied_hours"], 3650);
     EXPECT_EQ(a["sky_patches"], 146);
     EXPECT_EQ(a["missing_hours"], 0);
+    EXPECT_EQ(a["learning"], "year");
     EXPECT_EQ(a["occupied_hours"].get<int>(), a["daylit_hours"].get<int>() + a["dark_hours"].get<int>());
     for (const char* k : {"sda_pct", "ase_pct", "mean_da_pct", "mean_udi_useful_pct"}) {
         EXPECT_GE(a[k].get<double>(), 0.0) << k;
@@ -763,6 +764,7 @@ TEST(CliAnnual, AYearOfTheShippedWeatherOnTheRoom)
     expectError(run("render " + scene + out + ann + " --occupied 18-8"), 1, "--occupied '18-8': expected FROM-TO");
     expectError(run("render " + scene + out + ann + " --udi 2000,100"), 1, "--udi '2000,100': expected LOW,HIGH");
     expectError(run("render " + scene + out + ann + " --da-lux -3"), 1, "--da-lux -3: must be an illuminance");
+    expectError(run("render " + scene + out + ann + " --annual-learning some"), 1, "--annual-learning 'some': expected year or unit");
     expectError(run("render " + scene + out + ann + " --sky cie:12"), 1, "--annual takes its skies from the weather file");
     expectError(run("render " + scene + out + ann + " --daylight-factor"), 1, "--annual and --daylight-factor");
     expectError(run("render " + scene + out + ann + " --checkpoint " + dir + "/c.ckpt"), 1,

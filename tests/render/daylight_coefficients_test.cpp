@@ -4,7 +4,7 @@
 //     solid angle and no ground, a vertical one facing east each patch's cosine-weighted solid angle
 //     on its side (by quadrature) and the ground's pi/2; all of it direct light;
 //   - in a room with a south and an east window: the matrix times a CIE clear sky's patch vector
-//     against a render under that sky, cell by cell within 4 sigma of the two estimates' noise plus
+//     (adaptive emission learning for the unit sky, and for that sky) against a render under that sky, cell by cell within 4 sigma of the two estimates' noise plus
 //     the discretisation's bound sum_p D[s][p] (max_p L - min_p L) (the sky's luminance spread over
 //     each patch, which the patch vector takes as constant);
 //   - the kernel forms add the same coefficients, bit for bit.
@@ -37,7 +37,8 @@ struct Coefficients {
 // Renders `scene`'s sensors with every path tagged by its Reinhart patch (MF mf).
 Coefficients renderCoefficients(ocl::Context& ctx, Scene scene, const SensorSet& set, std::uint64_t paths, int mf,
                                 EmissionMethod method = EmissionMethod::Uniform,
-                                std::optional<KernelMode> kernels = std::nullopt, std::uint32_t seed = 1)
+                                std::optional<KernelMode> kernels = std::nullopt, std::uint32_t seed = 1,
+                                const std::vector<double>& patchWeights = {})
 {
     scene.bounds.grow(sensorBounds(set));
     const auto t = test::renderScene(ctx, scene, 8, 8, paths, {Roi{0, 0, 8, 8}}, seed, 1024, [&](RenderSettings& s) {
@@ -46,6 +47,7 @@ Coefficients renderCoefficients(ocl::Context& ctx, Scene scene, const SensorSet&
         s.emission.method = method;
         s.kernels = kernels;
         s.skyPatchMF = mf;
+        s.skyPatchWeights = patchWeights;
     });
     Coefficients c{t.result, {}, {}, set.cells.size(), skyPatchCount(mf)};
     EXPECT_TRUE(c.r.daylightCoefficients.has_value());
@@ -149,9 +151,14 @@ TEST(DaylightCoefficients, UnobstructedSensorsSeeEachPatchsCosineWeightedSolidAn
     }
 }
 
-TEST(DaylightCoefficients, MatrixTimesASkyAgreesWithRenderingThatSky)
+// Learning for the unit sky, and for the very sky the matrix is then multiplied by (what an annual
+// study does with the year's mean sky: RenderSettings::skyPatchWeights): either way unbiased.
+class MatrixTimesASky : public ::testing::TestWithParam<bool> {};
+
+TEST_P(MatrixTimesASky, AgreesWithRenderingThatSky)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
+    const bool weighted = GetParam();
     // The room with a south and an east window (glass, grey walls): a work plane of 36 cells at
     // 0.8 m. The sky: CIE clear (type 12) with the sun (left out: sky only) in the south-east at
     // 35 degrees, over a ground of albedo 0.2.
@@ -162,7 +169,6 @@ TEST(DaylightCoefficients, MatrixTimesASkyAgreesWithRenderingThatSky)
     addMeshSensor(set, "plane", "node", "work plane", rect({0, 0.8f, 3}, {3, 0, 0}, {0, 0, -3}), 0.5);
     ASSERT_EQ(set.cells.size(), 36u);
     const int mf = 2;
-    const Coefficients c = renderCoefficients(*ctx, unit, set, 16u << 20, mf, EmissionMethod::Adaptive);
     direct.sun.present = false;
     direct.sky = SkySpec{};
     direct.sky.type = SkySpec::Type::Cie;
@@ -174,6 +180,18 @@ TEST(DaylightCoefficients, MatrixTimesASkyAgreesWithRenderingThatSky)
     const std::optional<Goniogram> sky = buildSky(direct);
     ASSERT_TRUE(sky);
     const std::vector<double> v = patchLuminance(&*sky, mf);
+    std::vector<double> weights;
+    if (weighted) {
+        // the sky's patches, scaled to the unit sky's horizontal illuminance (annualPatchWeights)
+        const std::vector<double> proj = patchProjectedSolidAngles(mf);
+        double h = 0.0;
+        for (std::size_t p = 0; p < v.size(); ++p)
+            h += v[p] * proj[p];
+        for (double x : v)
+            weights.push_back(std::max(x, 1e-3) * M_PI / h);
+    }
+    const Coefficients c = renderCoefficients(*ctx, unit, set, 16u << 20, mf, EmissionMethod::Adaptive, std::nullopt, 1,
+                                              weights);
     // Each patch's luminance spread (16 x 16 points), the ground's none.
     const std::vector<SkyPatch> patches = skyPatches(mf);
     std::vector<double> spread(patches.size(), 0.0);
@@ -216,10 +234,13 @@ TEST(DaylightCoefficients, MatrixTimesASkyAgreesWithRenderingThatSky)
         sumDc += e;
         sumDirect += E[s];
     }
-    std::printf("[ coeffs   ] CIE clear sky, MF %d: matrix mean %.5g lux, render %.5g (%+.2f %%); chi2 %.1f over %zu "
-                "cells; largest bound %.1f %% of a cell\n", mf, sumDc / 36, sumDirect / 36, 100.0 * (sumDc / sumDirect - 1.0),
-                chi2, set.cells.size(), 100.0 * worstBound);
+    std::printf("[ coeffs   ] CIE clear sky, MF %d, learnt for %s: matrix mean %.5g lux, render %.5g (%+.2f %%); chi2 %.1f "
+                "over %zu cells; largest bound %.1f %% of a cell\n", mf, weighted ? "that sky" : "the unit sky", sumDc / 36,
+                sumDirect / 36, 100.0 * (sumDc / sumDirect - 1.0), chi2, set.cells.size(), 100.0 * worstBound);
 }
+
+INSTANTIATE_TEST_SUITE_P(Learning, MatrixTimesASky, ::testing::Values(false, true),
+                         [](const auto& info) { return std::string(info.param ? "ForThatSky" : "ForTheUnitSky"); });
 
 TEST(DaylightCoefficients, KernelFormsAddTheSameCoefficients)
 {
