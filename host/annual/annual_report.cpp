@@ -143,6 +143,9 @@ nlohmann::json writeAnnual(const SensorSet& sensors, const SensorStatistics& coe
                          num(res.sda_pct), " %, ASE", num(s.aseLux), "/", num(s.aseHours), "h ", num(res.ase_pct),
                          " %, mean DA ", num(res.meanDa_pct), " %, mean UDI ", num(s.udiLow_lux), "-", num(s.udiHigh_lux),
                          " ", num(res.meanUdiUseful_pct), " %; hourly noise ", num(100.0 * res.hourlyNoise_rel), " %"));
+    if (skies.missingHours)
+        lines->push_back(cat("annual: ", skies.missingHours, " daylight hours lack the irradiance their sky needs and count "
+                             "as dark; the first: ", skies.firstMissing));
     if (skies.fallbackHours)
         lines->push_back(cat("annual: ", skies.fallbackHours,
                              " hours whose Perez sky would be negative somewhere took a uniform sky of their diffuse light"));
