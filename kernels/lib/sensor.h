@@ -59,6 +59,7 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
     const float scale = s->info->fixed_scale;
     const uint cells = s->info->cells, patches = s->info->patches;
     const uint patch = path_flags >> FEN_PATH_PATCH_SHIFT;
+    const int tagged = patches && patch < patches; /* always, when the emitter tagged for these sums */
     const int direct = !(path_flags & FEN_PATH_BRANCHED);
     for (uint k = 0; k < planes; ++k) {
         const global DevSensorPlane* pl = s->planes + k;
@@ -85,7 +86,7 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
                 const float e = flux * cell.inv_area * scale;
                 if (!fixed_add128(s->accum + 2 * (ulong)c, e))
                     counter_add(counters, FEN_CTR_OVERFLOWS, 1);
-                if (patches) {
+                if (tagged) {
                     /* the daylight coefficients: by the sky patch the path left (patch < patches:
                        lib/sky_patch.h), and again while no diffuse surface has scattered it */
                     const ulong row = (ulong)cells + (ulong)c * patches + patch;
@@ -98,7 +99,7 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
                 /* with daylight coefficients, times the patch's weight (steer[cells + patch]): the
                    statistics of the sky the learning is for, not of the unit sky rendered */
                 const float l = flux * cell.inv_area * (1.0f / FEN_PI) * s->steer[c] *
-                                (patches ? s->steer[cells + patch] : 1.0f);
+                                (tagged ? s->steer[cells + patch] : 1.0f);
                 cell_stats_add(s->cell_stats, as_uint(beta.w) & ~FEN_PART_ESTIMATE_ONLY, (float3)(l),
                                s->stats_fixed_scale, s->stats_scale, counters);
 #endif
