@@ -52,6 +52,7 @@ AnnualSkies annualSkies(const WeatherFile& file, const AnnualSettings& s)
     out.patches = skyPatchCount(s.mf);
     const std::vector<double> projected = patchProjectedSolidAngles(s.mf);
     const std::vector<SkyPatch> patches = skyPatches(s.mf);
+    const PatchPoints points = patchPoints(s.mf);
     // The hours first (cheap: the sun's position and the sky's condition), in the file's order.
     std::vector<HourSky> hours;
     for (const WeatherRecord& r : file.records) {
@@ -90,10 +91,9 @@ AnnualSkies annualSkies(const WeatherFile& file, const AnnualSettings& s)
             const CieSkyType co = perezCoefficients(z, h.condition);
             std::vector<double> v;
             if (perezLuminanceBounded(co)) {
-                v = patchMeans([&](const glm::dvec3& d) {
-                    return perezRelativeLuminance(co, z, std::acos(std::clamp(d.y, -1.0, 1.0)),
-                                                  std::acos(std::clamp(glm::dot(d, sun), -1.0, 1.0)));
-                }, s.mf);
+                v = patchMeans(points, [&](const glm::dvec3& d) {
+                    return perezRelativeLuminanceCos(co, z, d.y, std::clamp(glm::dot(d, sun), -1.0, 1.0));
+                });
             } else {
                 v.assign(out.patches, 1.0);
                 fallback[k] = 1;

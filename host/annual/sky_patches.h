@@ -45,10 +45,17 @@ std::size_t skyPatchOf(const glm::dvec3& towardsSky, int mf);
 // sun in patches the same way; its gendaymtx spreads it over the four nearest).
 std::vector<double> patchLuminance(const Goniogram* sky, int mf, const glm::dvec3& towardsSun = glm::dvec3(0.0),
                                    double sunNormal_lux = 0.0);
-// Each sky patch's mean of `luminance` (towards a unit direction) over its solid angle, by the
-// same rule as patchLuminance (entry 0, the ground, left 0); and each patch's projected solid angle
-// (the integral of cos(zenith)), so that sum_p mean_p proj_p is the sky's horizontal illuminance.
-std::vector<double> patchMeans(const std::function<double(const glm::dvec3&)>& luminance, int mf);
+// The points a patch's mean luminance is taken over, equally spaced in solid angle: patch k's are
+// directions[first[k] .. first[k + 1]) (none for the ground, k = 0). Made once, used for every sky.
+struct PatchPoints {
+    std::vector<glm::dvec3> directions;  // unit, towards the sky
+    std::vector<std::size_t> first;      // patches + 1 entries
+};
+PatchPoints patchPoints(int mf);
+// Each sky patch's mean of `luminance` (towards a unit direction) over its points (entry 0, the
+// ground, left 0); and each patch's projected solid angle (the integral of cos(zenith)), so that
+// sum_p mean_p proj_p is the sky's horizontal illuminance.
+std::vector<double> patchMeans(const PatchPoints& points, const std::function<double(const glm::dvec3&)>& luminance);
 std::vector<double> patchProjectedSolidAngles(int mf);
 // The same sky when each patch is already known: only the sun added (in place).
 void addSunToPatches(std::vector<double>& patches, int mf, const glm::dvec3& towardsSun, double sunNormal_lux);

@@ -158,6 +158,15 @@ double perezRelativeLuminance(const CieSkyType& p, double sunZenithRad, double z
     return gradation(zetaRad) * indicatrix(gammaRad) / (gradation(0.0) * indicatrix(sunZenithRad));
 }
 
+double perezRelativeLuminanceCos(const CieSkyType& p, double sunZenithRad, double cosZeta, double cosGamma)
+{
+    const double cz = std::cos(sunZenithRad);
+    const double gradation = 1.0 + p.a * std::exp(p.b / cosZeta), zenith = 1.0 + p.a * std::exp(p.b);
+    const double indicatrix = 1.0 + p.c * std::exp(p.d * std::acos(cosGamma)) + p.e * cosGamma * cosGamma;
+    const double atZenith = 1.0 + p.c * std::exp(p.d * sunZenithRad) + p.e * cz * cz;
+    return gradation * indicatrix / (zenith * atZenith);
+}
+
 bool perezLuminanceBounded(const CieSkyType& p)
 {
     // The gradation must stay finite and positive down to the horizon, where exp(b / cos zeta)

@@ -47,6 +47,9 @@ CieSkyType perezCoefficients(double sunZenithRad, const PerezCondition& conditio
 
 // L / L_zenith of the model towards (zenith angle zetaRad <= pi/2, angle from the sun gammaRad).
 double perezRelativeLuminance(const CieSkyType& coefficients, double sunZenithRad, double zetaRad, double gammaRad);
+// The same from the cosines of zeta (> 0) and gamma: no trigonometry but one acos (the annual
+// study evaluates it some ten million times a year of hours).
+double perezRelativeLuminanceCos(const CieSkyType& coefficients, double sunZenithRad, double cosZeta, double cosGamma);
 
 // Luminous efficacy (lm/W) of the diffuse horizontal and the direct normal irradiance (Perez,
 // Ineichen, Seals, Michalsky, Stewart 1990, "Modeling daylight availability and irradiance
