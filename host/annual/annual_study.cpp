@@ -105,13 +105,10 @@ AnnualSkies annualSkies(const WeatherFile& file, const AnnualSettings& s)
                 x *= h.diffuseHorizontal_lux / horizontal;
             const double global_lux = h.diffuseHorizontal_lux + h.sunNormal_lux * std::max(0.0, sun.y);
             v[0] = s.groundAlbedo * global_lux / M_PI;
-            if (h.sunNormal_lux > 0.0) {
-                // the sun's normal illuminance over the solid angle of the patch it stands in
-                const std::size_t p = skyPatchOf(sun, s.mf);
-                out.sunPatch[k] = p;
-                out.sunLuminance[k] = h.sunNormal_lux / patches[p].solidAngle_sr;
-                v[p] += out.sunLuminance[k];
-            }
+            const SunInPatch inPatch = sunInPatch(patches, s.mf, sun, h.sunNormal_lux);
+            out.sunPatch[k] = inPatch.patch;
+            out.sunLuminance[k] = inPatch.luminance_cd_m2;
+            v[inPatch.patch] += inPatch.luminance_cd_m2;
             out.sky[k] = std::move(v);
         }
     };
@@ -149,10 +146,10 @@ AnnualResult annualStudy(const std::vector<double>& coefficients, const std::vec
                         " cells and ", P, " patches"));
     // The mean patch vector over the occupied hours (dark ones count as zero).
     std::vector<double> meanSky(P, 0.0);
-    const double occupied = std::max(1, skies.occupiedHours);
+    const double occupiedHours = std::max(1, skies.occupiedHours);
     for (const auto& v : skies.sky)
         for (std::size_t p = 0; p < P; ++p)
-            meanSky[p] += v[p] / occupied;
+            meanSky[p] += v[p] / occupiedHours;
     AnnualResult res;
     res.cells.resize(cells);
     std::vector<double> noiseSq(cells, 0.0), signalSq(cells, 0.0);
@@ -186,15 +183,15 @@ AnnualResult annualStudy(const std::vector<double>& coefficients, const std::vec
                     ++ase;
             }
             low += skies.occupiedHours - static_cast<int>(hours);  // the dark hours
-            out.mean_lux = sum / occupied;
+            out.mean_lux = sum / occupiedHours;
             double m = 0.0;
             for (std::size_t p = 0; p < P; ++p)
                 m += meanSky[p] * meanSky[p] * var[p];
             out.meanStdErr_lux = std::sqrt(m);
-            out.da_pct = 100.0 * da / occupied;
-            out.udiLow_pct = 100.0 * low / occupied;
-            out.udiUseful_pct = 100.0 * useful / occupied;
-            out.udiHigh_pct = 100.0 * high / occupied;
+            out.da_pct = 100.0 * da / occupiedHours;
+            out.udiLow_pct = 100.0 * low / occupiedHours;
+            out.udiUseful_pct = 100.0 * useful / occupiedHours;
+            out.udiHigh_pct = 100.0 * high / occupiedHours;
             out.aseHours = ase;
         }
     };

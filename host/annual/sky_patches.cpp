@@ -94,13 +94,18 @@ std::size_t skyPatchOf(const glm::dvec3& towardsSky, int mf)
     return first + static_cast<std::size_t>(col);
 }
 
-void addSunToPatches(std::vector<double>& patches, int mf, const glm::dvec3& towardsSun, double sunNormal_lux)
+SunInPatch sunInPatch(const std::vector<SkyPatch>& patches, int mf, const glm::dvec3& towardsSun, double sunNormal_lux)
 {
     if (!(sunNormal_lux > 0.0) || !(towardsSun.y > 0.0))
-        return;
-    const std::vector<SkyPatch> all = skyPatches(mf);
+        return {};
     const std::size_t k = skyPatchOf(towardsSun, mf);
-    patches[k] += sunNormal_lux / all[k].solidAngle_sr;
+    return {k, sunNormal_lux / patches[k].solidAngle_sr};
+}
+
+void addSunToPatches(std::vector<double>& patches, int mf, const glm::dvec3& towardsSun, double sunNormal_lux)
+{
+    const SunInPatch sun = sunInPatch(skyPatches(mf), mf, towardsSun, sunNormal_lux);
+    patches[sun.patch] += sun.luminance_cd_m2;
 }
 
 PatchPoints patchPoints(int mf)

@@ -57,6 +57,14 @@ PatchPoints patchPoints(int mf);
 // sum_p mean_p proj_p is the sky's horizontal illuminance.
 std::vector<double> patchMeans(const PatchPoints& points, const std::function<double(const glm::dvec3&)>& luminance);
 std::vector<double> patchProjectedSolidAngles(int mf);
+// Where the sun goes in a patch sky: the patch it stands in and the luminance its normal
+// illuminance adds there (over that patch's solid angle); {0, 0} with no sun (none, or below the
+// horizon). `patches`: skyPatches(mf), made once by a caller that places many suns.
+struct SunInPatch {
+    std::size_t patch = 0;
+    double luminance_cd_m2 = 0.0;
+};
+SunInPatch sunInPatch(const std::vector<SkyPatch>& patches, int mf, const glm::dvec3& towardsSun, double sunNormal_lux);
 // The same sky when each patch is already known: only the sun added (in place).
 void addSunToPatches(std::vector<double>& patches, int mf, const glm::dvec3& towardsSun, double sunNormal_lux);
 

@@ -281,9 +281,8 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
         checkMemoryNeeds(m, ctx.info(), cat("--annual: the daylight coefficients of ", sensors.cells.size(), " cells x ",
                                             skyPatchCount(opt.annual.settings.mf), " sky patches"),
                          "use a smaller --sky-patches, or fewer sensor cells");
+        annualSkyVectors = annualSkies(*annualWeather, opt.annual.settings);  // then the year's skies
     }
-    if (opt.annual.weather)
-        annualSkyVectors = annualSkies(*annualWeather, opt.annual.settings);  // before the render: seconds
     RenderSettings settings;
     settings.emission = emission;
     settings.paths = static_cast<std::uint64_t>(opt.paths.value_or(0));
