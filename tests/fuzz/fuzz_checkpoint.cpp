@@ -19,16 +19,12 @@
 #include "render/camera_sampler.h"
 #include "render/checkpoint.h"
 #include "render/film.h"
+#include "fuzz_checks.h"
 #include "util/error.h"
 
 namespace {
 
-void requireOneLine(const std::string& message)
-{
-    for (const char c : message)
-        if (static_cast<unsigned char>(c) < 0x20)
-            __builtin_trap();
-}
+using fen::fuzz::requireOneLine;
 
 std::string le64(std::uint64_t v)
 {

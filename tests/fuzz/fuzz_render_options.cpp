@@ -19,16 +19,12 @@
 #include "io/json_text.h"
 #include "render/image_stats.h"
 #include "render/render_options.h"
+#include "fuzz_checks.h"
 #include "util/error.h"
 
 namespace {
 
-void requireOneLine(const std::string& message)
-{
-    for (const char c : message)
-        if (static_cast<unsigned char>(c) < 0x20)
-            __builtin_trap();
-}
+using fen::fuzz::requireOneLine;
 
 fen::Scene litScene()
 {

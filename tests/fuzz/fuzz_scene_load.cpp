@@ -10,19 +10,10 @@
 #include <string>
 
 #include "scene/gltf_load.h"
+#include "fuzz_checks.h"
 #include "util/error.h"
 
-namespace {
-
-// Every message is one line of text, whatever the file holds: a control character is a finding.
-void requireOneLine(const std::string& message)
-{
-    for (const char c : message)
-        if (static_cast<unsigned char>(c) < 0x20)
-            __builtin_trap();
-}
-
-}  // namespace
+using fen::fuzz::requireOneLine;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

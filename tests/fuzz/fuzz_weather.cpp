@@ -13,18 +13,10 @@
 #include "io/weather_file.h"
 #include "sky/perez_sky.h"
 #include "sky/weather_sky.h"
+#include "fuzz_checks.h"
 #include "util/error.h"
 
-namespace {
-
-void requireOneLine(const std::string& message)
-{
-    for (const char c : message)
-        if (static_cast<unsigned char>(c) < 0x20)
-            __builtin_trap();
-}
-
-}  // namespace
+using fen::fuzz::requireOneLine;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
