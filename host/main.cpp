@@ -3,11 +3,14 @@
 // Every user-facing failure (bad input, unknown option, missing device, failed kernel build)
 // arrives here as an exception and leaves as "fenestra: error: <message>" on stderr with exit
 // status 1 (2 for command-line usage errors). Nothing is printed twice, nothing crashes.
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <sstream>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 
@@ -18,14 +21,31 @@
 #include "commands.h"
 #include "emission/strategy_registry.h"
 #include "trace/device_bvh.h"
+#include "team/team.h"
 #include "util/error.h"
+#ifdef FEN_HAVE_MPI
+#include "team/mpi_team.h"
+#endif
 
 namespace {
 
 int fail(const std::string& message, int code)
 {
+    // Under mpirun the failing rank ends the job: no other waits for it in a collective. When every
+    // rank fails alike (bad input), the root's line comes first and its abort ends the others
+    // before they print theirs; a rank that fails alone says which it is.
+    fen::Team& team = fen::processTeam();
+    if (team.size() > 1 && !team.root())
+        std::this_thread::sleep_for(std::chrono::seconds(1));
+    const std::string who = team.size() > 1 && !team.root() ? fen::cat("rank ", team.rank(), ": ") : "";
     // One line, whatever a message quotes: control characters are escaped here, at the boundary.
-    std::fprintf(stderr, "fenestra: error: %s\n", fen::printable(message, 4000).c_str());
+    std::fprintf(stderr, "fenestra: error: %s%s\n", who.c_str(), fen::printable(message, 4000).c_str());
+#ifdef FEN_HAVE_MPI
+    if (team.size() > 1) {
+        std::fflush(stderr);
+        fen::abortMpi(code);
+    }
+#endif
     return code;
 }
 
@@ -52,6 +72,18 @@ std::vector<int> parseWidths(const std::string& s)
 
 int main(int argc, char** argv)
 {
+#ifdef FEN_HAVE_MPI
+    // Started by mpirun: this process is one rank of a team that shares a render's paths.
+    std::unique_ptr<fen::Team> mpi;
+    if (fen::launchedByMpi()) {
+        try {
+            mpi = fen::joinMpi(&argc, &argv);
+        } catch (const fen::Error& e) {
+            return fail(e.what(), 1);
+        }
+        fen::setProcessTeam(mpi.get());
+    }
+#endif
     CLI::App app{"fenestra - light tracer for daylit interiors (OpenCL)", "fenestra"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "fenestra 0.1");
@@ -127,6 +159,10 @@ int main(int argc, char** argv)
         return fail(fen::printable(e.what(), 400) + " (see fenestra --help)", 2);
     }
 
+    if (fen::processTeam().size() > 1 && !*renderCmd)
+        return fail(fen::cat("under mpirun only `fenestra render` shares its work over the ranks (",
+                             fen::processTeam().describe(), "); run `fenestra ", argv[1], "` as one process"),
+                    2);
     try {
         if (*devices)
             return fen::runDevices(devicesJson);

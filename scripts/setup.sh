@@ -11,6 +11,7 @@ packages=(
   libglm-dev libopenexr-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgtest-dev libcli11-dev
   libembree-dev   # only the yardstick of `fenestra bench`
+  libopenmpi-dev openmpi-bin openssh-client   # mpirun fenestra render (openssh: Open MPI's launcher wants it)
   python3 python3-matplotlib python3-numpy   # scripts/compare.py's charts
 )
 

@@ -120,7 +120,7 @@ int defaultDeviceIndex(const std::vector<DeviceInfo>& devices)
     return devices.empty() ? -1 : 0;
 }
 
-DeviceInfo selectDevice(const std::string& specIn)
+DeviceInfo selectDevice(const std::string& specIn, int member)
 {
     std::string spec = specIn;
     std::string origin = "--device";
@@ -131,8 +131,17 @@ DeviceInfo selectDevice(const std::string& specIn)
         }
     }
     const auto devices = listDevices();
-    if (spec.empty())
-        return devices[static_cast<size_t>(defaultDeviceIndex(devices))];
+    const auto nth = [&](const std::vector<const DeviceInfo*>& among) {
+        return *among[static_cast<std::size_t>(std::max(member, 0)) % among.size()];
+    };
+    if (spec.empty()) {
+        const DeviceInfo& first = devices[static_cast<size_t>(defaultDeviceIndex(devices))];
+        std::vector<const DeviceInfo*> alike;  // the default's kind: GPUs, else CPUs
+        for (const auto& d : devices)
+            if (d.type == first.type)
+                alike.push_back(&d);
+        return member == 0 ? first : nth(alike);
+    }
     if (isIndex(spec)) {
         const long i = std::strtol(spec.c_str(), nullptr, 10);
         if (i >= 0 && i < static_cast<long>(devices.size()))
@@ -141,11 +150,39 @@ DeviceInfo selectDevice(const std::string& specIn)
                         availableList(devices)));
     }
     const std::string needle = lower(spec);
+    std::vector<const DeviceInfo*> matches;
     for (const auto& d : devices)
         if (lower(d.matchText()).find(needle) != std::string::npos)
-            return d;
+            matches.push_back(&d);
+    if (!matches.empty())
+        return nth(matches);
     throw Error(cat("no OpenCL device matches ", origin, " '", spec, "'; available: ",
                     availableList(devices)));
+}
+
+std::vector<DeviceInfo> selectDevices(const std::string& spec, int member)
+{
+    if (spec == "all")
+        return listDevices();
+    if (spec.find(',') == std::string::npos)
+        return {selectDevice(spec, member)};
+    std::vector<DeviceInfo> chosen;
+    std::size_t at = 0;
+    for (;;) {
+        const std::size_t comma = spec.find(',', at);
+        const std::string one = spec.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+        if (one.empty())
+            throw Error(cat("--device '", spec, "': an empty item in the list"));
+        const DeviceInfo d = selectDevice(one);
+        for (const DeviceInfo& c : chosen)
+            if (c.index == d.index)
+                throw Error(cat("--device '", spec, "': device ", d.index, " (", d.label(), ") is named twice"));
+        chosen.push_back(d);
+        if (comma == std::string::npos)
+            break;
+        at = comma + 1;
+    }
+    return chosen;
 }
 
 } }  // namespace fen::ocl

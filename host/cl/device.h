@@ -44,8 +44,16 @@ struct DeviceInfo {
 std::vector<DeviceInfo> listDevices();
 
 // The device named by `spec` (index or substring; "" = FEN_CL_DEVICE, else the default).
+// `member`: the caller's rank among the processes on this machine (team/team.h): a substring
+// several devices match, or no spec with several devices of the default's kind, gives member k
+// the k-th of them (modulo their count), so that ranks spread over a machine's GPUs.
 // Throws fen::Error naming the spec and listing what is available.
-DeviceInfo selectDevice(const std::string& spec);
+DeviceInfo selectDevice(const std::string& spec, int member = 0);
+
+// Several devices for one render (DESIGN.md §9): "all" (every device listed), or a comma-separated
+// list of indices or substrings (each as selectDevice takes it; none named twice); anything else is
+// selectDevice(spec, member) alone.
+std::vector<DeviceInfo> selectDevices(const std::string& spec, int member = 0);
 
 // The default choice among `devices` (first GPU, else first CPU, else first); -1 if empty.
 int defaultDeviceIndex(const std::vector<DeviceInfo>& devices);

@@ -195,6 +195,12 @@ public:
         k.guide = guide_.get();  // off: slots 0, placeholders
         return k;
     }
+    std::vector<SummedBuffer> summedBuffers() const override
+    {
+        static_assert(FEN_CELL_SUM_LO == 0 && FEN_CELL_SUMSQ_LO == 2 && FEN_CELL_CONNECTIONS == 4 &&
+                          FEN_CELL_STATS_WORDS == 5, "a cell's statistics: two 128-bit sums and a count");
+        return {{&stats_, FEN_CELL_PARTS * grid_->cells().size(), {2, 2, 1}}, guide_->summed()};
+    }
     void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
     {
         ocl::setKernelArgsFrom(emit, first, params_, cellAlias_, cellBuf_, sky_.theta, sky_.phi, sky_.values,

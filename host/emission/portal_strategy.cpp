@@ -89,6 +89,11 @@ public:
         k.cellStats = &stats_;
         return k;
     }
+    std::vector<SummedBuffer> summedBuffers() const override
+    {
+        static_assert(FEN_CELL_STATS_WORDS == 5, "a cell's statistics: two 128-bit sums and a count");
+        return {{&stats_, complement_ > 0.0 ? 2u : 0u, {2, 2, 1}}};
+    }
     void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
     {
         ocl::setKernelArgsFrom(emit, first, sourceParams_, alias_, sky_.theta, sky_.phi, sky_.values,

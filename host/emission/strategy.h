@@ -38,6 +38,7 @@
 #include "scene/scene.h"
 #include "sky/goniogram.h"
 #include "sky/sky_tables.h"
+#include "team/summed_buffer.h"
 
 namespace fen {
 
@@ -111,6 +112,9 @@ public:
     // bit-identical (render/checkpoint.h).
     virtual void saveState(StateWriter& w) const { (void)w; }
     virtual void loadState(StateReader& r) { (void)r; }
+    // The device statistics it learns from, as a team sums them after every pass
+    // (team/shared_sums.h); none when it learns nothing.
+    virtual std::vector<SummedBuffer> summedBuffers() const { return {}; }
 };
 
 }  // namespace fen

@@ -7,6 +7,7 @@
 
 #include "io/state_io.h"
 #include "render/pooled_variance.h"
+#include "util/error.h"
 #include "util/fixed_point.h"
 
 namespace fen {
@@ -51,6 +52,13 @@ std::vector<double> Film::read(std::uint64_t paths, std::vector<float>* camera)
         for (int c = 0; c < 3; ++c)
             img[3 * p + c] = fixed128(acc.data() + kWordsPerPixel * p + 2 * c) * toValue + (camera ? 0.0 : cam[4 * p + c]);
     return img;
+}
+
+void Film::writeCamera(const std::vector<float>& camera)
+{
+    if (camera.size() != pixels() * 4)
+        throw Error(cat("internal error: a camera image of ", camera.size(), " floats for ", pixels(), " pixels"));
+    ctx_.queue().enqueueWriteBuffer(camera_, CL_TRUE, 0, camera.size() * 4, camera.data());
 }
 
 std::vector<float> Film::readCamera()

@@ -27,6 +27,7 @@
 #include "cl/context.h"
 #include "io/image.h"
 #include "render/image_stats.h"
+#include "team/summed_buffer.h"
 
 namespace fen {
 
@@ -42,6 +43,8 @@ public:
     std::size_t pixels() const { return static_cast<std::size_t>(width_) * height_; }
     float fixedScale() const { return fixedScale_; }
     cl::Buffer& accumulators() { return accum_; }
+    // The accumulators as a team sums them (team/shared_sums.h): per pixel, three 128-bit sums.
+    SummedBuffer summed() const { return {&accum_, pixels(), {2, 2, 2}}; }
     // The camera pass's output, per pixel: rgb mean of its samples, w the sum of their luminances'
     // squared deviations (kernels/camera_pass.cl).
     cl::Buffer& cameraImage() { return camera_; }
@@ -56,6 +59,8 @@ public:
     // device (4 floats per pixel, above).
     std::vector<double> read(std::uint64_t paths, std::vector<float>* camera = nullptr);
     std::vector<float> readCamera();
+    // Sets the camera pass's output (4 floats a pixel): a team's members take the root's.
+    void writeCamera(const std::vector<float>& camera);
 
 private:
     ocl::Context& ctx_;

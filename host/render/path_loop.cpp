@@ -267,10 +267,28 @@ std::uint64_t PathLoop::cameraPassAlone(std::uint32_t batch)
     return ctr[FEN_CTR_CAMERA_RAYS];
 }
 
-void PathLoop::endBatch(std::uint32_t batch, BatchCounts& counts)
+void PathLoop::endBatch(std::uint32_t batch, BatchCounts& counts, Team& team)
 {
     std::uint64_t ctr[FEN_CTR_COUNT] = {};
-    cameraPass(batch, ctr);
+    if (team.root())
+        cameraPass(batch, ctr);
+    else
+        ctx_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, FEN_CTR_COUNT * 8, ctr);
+    if (team.size() > 1) {
+        // every counter is a sum over paths (or camera samples); the cut flux a 128-bit one
+        std::vector<U128> v;
+        for (int i = 0; i < FEN_CTR_COUNT; ++i)
+            if (i != FEN_CTR_CUT_FLUX_HI)
+                v.push_back(i == FEN_CTR_CUT_FLUX_LO ? U128{ctr[i], ctr[i + 1]} : U128{ctr[i], 0});
+        team.sum(v);
+        for (int i = 0, k = 0; i < FEN_CTR_COUNT; ++i)
+            if (i != FEN_CTR_CUT_FLUX_HI) {
+                ctr[i] = v[static_cast<std::size_t>(k)].lo;
+                if (i == FEN_CTR_CUT_FLUX_LO)
+                    ctr[i + 1] = v[static_cast<std::size_t>(k)].hi;
+                ++k;
+            }
+    }
     counts.shadowRays += ctr[FEN_CTR_SHADOW_RAYS];
     counts.cameraRays += ctr[FEN_CTR_CAMERA_RAYS];
     counts.badContributions += ctr[FEN_CTR_BAD_CONTRIBUTIONS];

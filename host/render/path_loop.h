@@ -20,6 +20,7 @@
 #include "render/film.h"
 #include "sensor/device_sensors.h"
 #include "shared/fen_render.h"
+#include "team/team.h"
 
 namespace fen {
 
@@ -87,8 +88,10 @@ public:
     // The camera pass alone, its random numbers those of batch `batch` (render/camera_sampler.h's
     // pilot: a number no counted batch has); returns its rays. Zeroes the counters.
     std::uint64_t cameraPassAlone(std::uint32_t batch);
-    // The camera pass of batch `batch`, then the batch's counters into `counts`.
-    void endBatch(std::uint32_t batch, BatchCounts& counts);
+    // The camera pass of batch `batch`, then the batch's counters into `counts`. In a team
+    // (team/team.h) the root alone runs the camera pass and the counters are summed over the
+    // members, exactly, so that `counts` gets what one process tracing every path would count.
+    void endBatch(std::uint32_t batch, BatchCounts& counts, Team& team);
 
 private:
     void warmUp();

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <memory>
 #include <optional>
 #include <filesystem>
 #include <cerrno>
@@ -42,6 +43,8 @@
 #include "sensor/sensor_smoothing.h"
 #include "sky/sky_spec.h"
 #include "sky/solar_position.h"
+#include "render/device_team.h"
+#include "team/team.h"
 #include "util/error.h"
 #include "util/stop_signals.h"
 
@@ -213,9 +216,13 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     outputSet.push_back(jsonPath);
     if (!checkpointPath.empty())
         outputSet.push_back(checkpointPath);
-    const OutputSetLock outputLock(outputSet);
-    if (!outputLock.recovered().empty())
-        std::fprintf(stderr, "fenestra: warning: %s: %s\n", printable(opt.outPath).c_str(), outputLock.recovered().c_str());
+    // In a team (mpirun) the root alone writes, warns and shows progress; the others trace.
+    Team& team = processTeam();
+    std::optional<OutputSetLock> outputLock;
+    if (team.root())
+        outputLock.emplace(outputSet);
+    if (outputLock && !outputLock->recovered().empty())
+        std::fprintf(stderr, "fenestra: warning: %s: %s\n", printable(opt.outPath).c_str(), outputLock->recovered().c_str());
 
     // No image: no camera is needed, and a one-pixel film that nothing reaches stands in.
     CameraSpec noCamera;
@@ -248,14 +255,22 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
             throw Error(cat(referencePath, ": reference is ", reference->width, " x ",
                             reference->height, ", the render ", width, " x ", height));
     }
-    if (!scene.sun.present && scene.sky.type == SkySpec::Type::None)
+    if (!scene.sun.present && scene.sky.type == SkySpec::Type::None && team.root())
         std::fprintf(stderr, "fenestra: warning: %s has neither a sun nor a sky: the image is black\n",
                      scene.source.c_str());
 
-    std::optional<ocl::Context> ownContext;
+    // The device, or with `--device all` or a list several, each a member of the render's team.
+    std::vector<std::unique_ptr<ocl::Context>> ownContexts;
     if (!hooks.context)
-        ownContext.emplace(ocl::selectDevice(opt.device));
-    ocl::Context& ctx = hooks.context ? *hooks.context : *ownContext;
+        for (const ocl::DeviceInfo& d : ocl::selectDevices(opt.device, team.localRank()))
+            ownContexts.push_back(std::make_unique<ocl::Context>(d));
+    if (ownContexts.size() > 1 && team.size() > 1)
+        throw Error(cat("--device '", opt.device, "': under mpirun each rank takes one device (",
+                        ownContexts.size(), " named); start a rank per device instead"));
+    ocl::Context& ctx = hooks.context ? *hooks.context : *ownContexts.front();
+    std::vector<ocl::Context*> contexts{&ctx};
+    for (std::size_t k = 1; k < ownContexts.size(); ++k)
+        contexts.push_back(ownContexts[k].get());
     if (hooks.onInputs) {
         std::vector<std::string> read;
         for (const auto& input : inputs)
@@ -265,11 +280,12 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
             read.push_back(resumePath);
         hooks.onInputs(read, jsonPath);
     }
-    // What the film and the path pool will take, against what the device and the host have.
-    checkMemoryNeeds(renderMemoryNeeds(width, height,
-                                       opt.poolSize ? static_cast<std::uint64_t>(*opt.poolSize)
-                                                    : defaultPoolSlots(ctx.info())),
-                     ctx.info());
+    // What the film and the path pool will take, against what each device and the host have.
+    for (const ocl::Context* c : contexts)
+        checkMemoryNeeds(renderMemoryNeeds(width, height,
+                                           opt.poolSize ? static_cast<std::uint64_t>(*opt.poolSize)
+                                                        : defaultPoolSlots(c->info())),
+                         c->info());
     if (opt.annual.weather) {
         // The daylight coefficients: two cells x patches matrices of 128-bit sums on the device
         // (one buffer with the cells'); on the host each batch's read-back (16 + 8 bytes an entry)
@@ -300,7 +316,8 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     settings.rouletteDepth = opt.rouletteDepth;  // not given: the renderer takes the method's
     settings.splitMax = opt.split.value_or(settings.splitMax);
     settings.splitWeight = opt.splitWeight.value_or(settings.splitWeight);
-    settings.progress = opt.progress.value_or(isatty(STDERR_FILENO) != 0);
+    settings.progress = team.root() && opt.progress.value_or(isatty(STDERR_FILENO) != 0);
+    settings.team = &team;
     settings.rois = {roi};
     settings.sensors = &sensors;
     settings.noImage = noImage;
@@ -336,15 +353,26 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     settings.carry = &progress;  // a resumed render's records start with those before it
     const StopSignals signals;  // Ctrl-C asks for a graceful stop (util/stop_signals.h)
     settings.stop = StopSignals::flag();
-    Renderer renderer(ctx, scene, sky, camera, width, height, settings);
     // Warned once the settings are known to be valid, so that an error stays one line.
-    if (settings.paths > 0 && settings.paths % static_cast<std::uint64_t>(settings.batches) != 0)
-        std::fprintf(stderr, "fenestra: warning: --paths %llu is not a multiple of the %d batches: %llu paths "
-                     "are traced (batches of %llu)\n",
-                     static_cast<unsigned long long>(settings.paths), settings.batches,
-                     static_cast<unsigned long long>(settings.paths / settings.batches * settings.batches),
-                     static_cast<unsigned long long>(settings.paths / settings.batches));
-    const RenderResult r = renderer.render();
+    const auto warnPaths = [&] {
+        if (settings.paths > 0 && settings.paths % static_cast<std::uint64_t>(settings.batches) != 0 && team.root())
+            std::fprintf(stderr, "fenestra: warning: --paths %llu is not a multiple of the %d batches: %llu paths "
+                         "are traced (batches of %llu)\n",
+                         static_cast<unsigned long long>(settings.paths), settings.batches,
+                         static_cast<unsigned long long>(settings.paths / settings.batches * settings.batches),
+                         static_cast<unsigned long long>(settings.paths / settings.batches));
+    };
+    RenderResult r;
+    if (contexts.size() == 1) {
+        Renderer renderer(ctx, scene, sky, camera, width, height, settings);
+        warnPaths();
+        r = renderer.render();
+    } else {
+        r = renderOnDevices(contexts, scene, sky, camera, width, height, settings);
+        warnPaths();
+    }
+    if (!team.root())  // the root writes the outputs, and reports a failed checkpoint
+        return r.interrupted ? 130 : 0;
 
     for (float v : r.image.rgb)
         if (!std::isfinite(v))
@@ -416,7 +444,10 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     j["camera"] = camera.nodeName.empty() ? camera.cameraName : camera.nodeName;
     j["sun"] = sunJson(scene.sun);
     j["sky"] = skyJson(scene.sky, sky);
-    j["device"] = ctx.info().label();
+    std::string deviceLabels;
+    for (const ocl::Context* c : contexts)
+        deviceLabels += (deviceLabels.empty() ? "" : " + ") + c->info().label();
+    j["device"] = deviceLabels;
     j["method"] = methodName(r.method);
     j["width"] = width;
     j["height"] = height;
@@ -437,6 +468,8 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     j["paths_per_batch"] = r.pathsPerBatch;
     j["camera_samples_per_pixel"] = r.cameraSamplesPerPixel;
     j["camera_pass"] = r.cameraPass;
+    if (!r.team.is_null())
+        j["team"] = r.team;
     const BatchCounts& n = r.counts;
     const std::uint64_t lightRays = n.extensionRays + n.shadowRays;
     j["rays"] = {{"extension", n.extensionRays},

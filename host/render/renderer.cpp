@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "emission/emission_sphere.h"
 #include "emission/light_levels.h"
@@ -63,6 +64,12 @@ std::shared_ptr<const DeviceScene> deviceSceneFor(ocl::Context& c, const Scene& 
 struct Renderer::Impl {
     ocl::Context& ctx;
     RenderSettings settings;
+    Team& team;
+    SharedSums sums;
+    std::vector<double> shares;  // each member's share of a pass's paths: by its measured speed
+    double memberSeconds = 0.0;  // this member's path-loop time and paths in the batch so far
+    std::uint64_t memberPaths = 0;
+    std::string deviceLabel;     // the root's device: what a checkpoint's fingerprint names
     bool sceneReused = false;
     std::shared_ptr<const DeviceScene> sceneHolder;
     const DeviceScene& scene;
@@ -90,7 +97,8 @@ struct Renderer::Impl {
 
     Impl(ocl::Context& c, const Scene& s, const std::optional<Goniogram>& g, const CameraSpec& cam,
          int w, int h, const RenderSettings& st)
-        : ctx(c), settings(withMethodDefaults(st)),
+        : ctx(c), settings(withMethodDefaults(st)), team(st.team ? *st.team : soloTeam()), sums(c, team),
+          shares(static_cast<std::size_t>(team.size()), 1.0 / team.size()), deviceLabel(c.info().label()),
           sceneHolder(deviceSceneFor(c, s, st, &sceneReused)), scene(*sceneHolder),
           skyTables(makeSkyTables(g)), sky(c, skyTables),
           film(c, w, h, referenceLuminance(s, skyTables)),
@@ -112,6 +120,7 @@ struct Renderer::Impl {
             sensors.setPatchWeights(std::vector<float>(st.skyPatchWeights.begin(), st.skyPatchWeights.end()));
         }
         film.setCameraSamples(cameraSampler.counts());
+        team.broadcast(deviceLabel);
         camera = cam;
         if (!st.checkpointPath.empty() || !st.resumePath.empty())
             sceneHash_ = sceneHash(s);
@@ -154,6 +163,72 @@ struct Renderer::Impl {
     }
 
     bool stopping() const { return settings.stop && settings.stop->load(); }
+    // A stop asked of any member, on every member (a collective: all members call it together).
+    bool stopAgreed() { return team.size() > 1 ? anyMember(team, stopping()) : stopping(); }
+
+    // This member's part [lo, hi) of paths [first, first + n): consecutive shares in rank order,
+    // in proportion to `shares`. The same on every member; the last ends at first + n exactly.
+    std::pair<std::uint64_t, std::uint64_t> memberRange(std::uint64_t first, std::uint64_t n) const
+    {
+        if (team.size() == 1)
+            return {first, first + n};
+        double total = 0.0, before = 0.0;
+        for (std::size_t k = 0; k < shares.size(); ++k) {
+            total += shares[k];
+            if (static_cast<int>(k) < team.rank())
+                before += shares[k];
+        }
+        const auto at = [&](double s) {
+            return first + std::min(n, static_cast<std::uint64_t>(std::floor(static_cast<double>(n) * (s / total))));
+        };
+        const bool last = team.rank() == team.size() - 1;
+        return {at(before), last ? first + n : at(before + shares[static_cast<std::size_t>(team.rank())])};
+    }
+
+    // After a batch: the members' shares of the next in proportion to their paths per second in
+    // this one (a member that ran none keeps its share).
+    void rebalance()
+    {
+        if (team.size() == 1)
+            return;
+        const double rate = memberPaths > 0 && memberSeconds > 0.0 ? static_cast<double>(memberPaths) / memberSeconds : 0.0;
+        const std::vector<double> rates = team.gather(rate);
+        double sum = 0.0;
+        for (double r : rates)
+            sum += r;
+        for (std::size_t k = 0; k < rates.size(); ++k)
+            if (rates[k] > 0.0 && sum > 0.0)
+                shares[k] = rates[k] / sum;
+        memberSeconds = 0.0;
+        memberPaths = 0;
+    }
+
+    // The device buffers a pass adds to, as a team sums them.
+    std::vector<SummedBuffer> summedBuffers() const
+    {
+        std::vector<SummedBuffer> b{film.summed(), sensors.summed()};
+        for (const SummedBuffer& s : strategy->summedBuffers())
+            b.push_back(s);
+        return b;
+    }
+
+    // The root's camera-pass image, on every member's device.
+    void shareCamera()
+    {
+        if (team.size() == 1)
+            return;
+        std::string bytes;
+        if (team.root()) {
+            const std::vector<float> cam = film.readCamera();
+            bytes.assign(reinterpret_cast<const char*>(cam.data()), cam.size() * sizeof(float));
+        }
+        team.broadcast(bytes);
+        if (!team.root()) {
+            std::vector<float> cam(bytes.size() / sizeof(float));
+            std::memcpy(cam.data(), bytes.data(), cam.size() * sizeof(float));
+            film.writeCamera(cam);
+        }
+    }
 
     void progress(bool force)
     {
@@ -245,6 +320,7 @@ struct Renderer::Impl {
         film.clear();
         sensors.clear();
         loop->beginBatch();
+        const std::uint64_t extensionBefore = counts.extensionRays;
         const auto onIteration = [this](std::uint64_t paths, std::uint64_t rays) {
             pathsDone += paths;
             raysDone += rays;
@@ -255,9 +331,21 @@ struct Renderer::Impl {
         while (done < count) {
             const std::uint64_t n = std::min(count - done, std::max<std::uint64_t>(1, strategy->passLimit()));
             setPickLattice(base + done, n);
-            const std::uint64_t ran = loop->run(base + done, n, counts, onIteration, abort);
+            const auto [lo, hi] = memberRange(base + done, n);
+            sums.before(summedBuffers());
+            const auto t0 = Clock::now();
+            std::uint64_t ran = loop->run(lo, hi - lo, counts, onIteration, abort);
+            memberSeconds += since(t0);
+            memberPaths += ran;
+            bool cut = ran < hi - lo;
+            if (team.size() > 1) {
+                // the team's paths of the pass, and whether a stop cut any member's share short
+                std::vector<U128> extra{{ran, 0}, {cut ? 1u : 0u, 0}};
+                sums.after(extra);
+                ran = extra[0].lo;
+                cut = extra[1].lo != 0;
+            }
             done += ran;
-            const bool cut = ran < n;
             strategy->afterPaths(ran, done == count || cut);
             if (cut)
                 break;
@@ -267,7 +355,10 @@ struct Renderer::Impl {
                 estimateImage(stats, done);
         }
         const std::uint64_t shadowBefore = counts.shadowRays;
-        loop->endBatch(batch, counts);
+        if (team.size() > 1)  // the host counts extension rays: the team's, as the device counters
+            counts.extensionRays = extensionBefore + sumOver(team, counts.extensionRays - extensionBefore);
+        loop->endBatch(batch, counts, team);
+        shareCamera();
         raysDone += counts.shadowRays - shadowBefore;
         BatchImage img;
         img.rgb = film.read(done, &img.camera);
@@ -312,7 +403,11 @@ struct Renderer::Impl {
     {
         while (cameraSampler.needsPilot()) {
             // random numbers of batches no counted batch is (nor the calibration, 0xFFFFFFFF)
-            const std::uint64_t rays = loop->cameraPassAlone(0xFFFFFFFEu - static_cast<std::uint32_t>(cameraSampler.pilotPass()));
+            std::uint64_t rays = 0;
+            if (team.root())
+                rays = loop->cameraPassAlone(0xFFFFFFFEu - static_cast<std::uint32_t>(cameraSampler.pilotPass()));
+            shareCamera();
+            rays = sumOver(team, rays);
             cameraSampler.addPilot(film.readCamera(), rays, static_cast<std::size_t>(film.width()));
             film.setCameraSamples(cameraSampler.counts());
         }
@@ -358,7 +453,7 @@ struct Renderer::Impl {
                             {"up", v3(camera.up)}, {"yfov", camera.yfovRad}}},
                 {"width", film.width()},
                 {"height", film.height()},
-                {"device", ctx.info().label()},
+                {"device", deviceLabel},
                 {"bvh_width", scene.bvh().width()},
                 {"seed", settings.seed},
                 {"paths", settings.paths},
@@ -478,17 +573,18 @@ struct Renderer::Impl {
             for (;;) {
                 const auto t0 = Clock::now();
                 const std::uint64_t ran = runBatch(l.base, cal, 0xFFFFFFFFu, scratch, nullptr).paths;
-                last = since(t0);
+                last = fromRoot(team, since(t0));  // a team goes by the root's clock
+                rebalance();
                 l.base += ran;
                 if (ran < cal) {  // stopped: the rate of what ran is as good a guess as any
                     cal = std::max<std::uint64_t>(ran, 1);
                     break;
                 }
-                if (last >= enough || since(c0) >= 0.1 * settings.timeSeconds || stopping())
+                if (fromRoot(team, last >= enough || since(c0) >= 0.1 * settings.timeSeconds) || stopAgreed())
                     break;
                 cal *= 2;
             }
-            r.calibrationSeconds = since(c0);
+            r.calibrationSeconds = fromRoot(team, since(c0));
             const double rate = cal / std::max(last, 1e-6);
             const double left = std::max(0.0, settings.timeSeconds - r.calibrationSeconds);
             l.perBatch = static_cast<std::uint64_t>(
@@ -505,11 +601,20 @@ struct Renderer::Impl {
         int savedAt = l.done;
         std::string counted;  // the strategy's state after the last counted batch (checkpointing)
         // A checkpoint that cannot be written ends the render, after the batches done are written.
+        // In a team the root writes it, and everyone learns whether it could.
         const auto checkpoint = [&](const std::string* strategyBytes) {
-            try {
-                saveCheckpoint(l, renderSeconds(), r, stats, strategyBytes);
-            } catch (const Error& e) {
-                r.checkpointError = e.what();
+            bool ok = true;
+            if (team.root()) {
+                try {
+                    saveCheckpoint(l, renderSeconds(), r, stats, strategyBytes);
+                } catch (const Error& e) {
+                    r.checkpointError = e.what();
+                    ok = false;
+                }
+            }
+            if (!fromRoot(team, ok)) {
+                if (r.checkpointError.empty())
+                    r.checkpointError = "the root could not write the checkpoint";
                 return false;
             }
             lastCheckpoint = Clock::now();
@@ -522,14 +627,14 @@ struct Renderer::Impl {
         for (;;) {
             if (settings.paths > 0 && l.done >= batches)
                 break;
-            if (l.done >= 1 && stopping()) {
+            if (l.done >= 1 && stopAgreed()) {
                 r.interrupted = true;
                 break;
             }
             if (settings.paths == 0 && l.done >= 2) {
                 const double elapsed = r.calibrationSeconds + renderSeconds();
                 const double perBatchSeconds = renderSeconds() / l.done;
-                if (elapsed + perBatchSeconds > settings.timeSeconds)
+                if (fromRoot(team, elapsed + perBatchSeconds > settings.timeSeconds))  // the root's clock
                     break;
             }
             if (checkpointing)
@@ -555,6 +660,7 @@ struct Renderer::Impl {
             }
             countBatch(img, countsBefore, r.counts, stats);
             estimateImage(&stats, 0);
+            rebalance();
             l.base += l.perBatch;
             ++l.done;
             if (settings.onBatch)
@@ -563,7 +669,7 @@ struct Renderer::Impl {
             const bool due = settings.checkpointBatches > 0
                                  ? (l.done - savedAt) >= settings.checkpointBatches
                                  : since(lastCheckpoint) >= settings.checkpointSeconds;
-            if (checkpointing && (due || stopping()) && !checkpoint(nullptr)) {
+            if (checkpointing && fromRoot(team, due || stopping()) && !checkpoint(nullptr)) {
                 r.interrupted = true;
                 break;
             }
@@ -591,6 +697,12 @@ struct Renderer::Impl {
         r.emissionWarnings = strategy->warnings();
         r.emittedFluxPerPath = strategy->emittedFluxPerPath();
         r.kernels = ctx.stats().entries();
+        if (team.size() > 1) {
+            r.team = sums.report();
+            r.team["members"] = team.size();
+            r.team["kind"] = team.describe();
+            r.team["shares"] = shares;
+        }
         double deviceSeconds = 0.0, cameraSeconds = 0.0;
         for (const auto& [name, e] : r.kernels) {
             deviceSeconds += e.deviceSeconds;

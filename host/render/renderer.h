@@ -9,7 +9,11 @@
 // reads its statistics and may change its density -- the hook after every pass, which a learning
 // strategy uses. The camera pass adds the sky seen directly once per batch. With a time budget, a
 // short calibration (not counted in the image, but a learning strategy learns from it) sizes the
-// batches so that about B of them fill the time.
+// batches so that about B of them fill the time. In a team (settings.team) every member runs this
+// same loop on its share of each pass's paths; the device sums are added over the members after
+// every pass (team/shared_sums.h), the root alone runs the camera pass and hands out its image, and
+// every decision that depends on a clock or a signal is the root's or everyone's, so all members
+// take the same steps and hold the same state (DESIGN.md §9).
 #pragma once
 
 #include <atomic>
@@ -33,6 +37,8 @@
 #include "sensor/sensor_stats.h"
 #include "scene/scene.h"
 #include "sky/goniogram.h"
+#include "team/shared_sums.h"
+#include "team/team.h"
 
 namespace fen {
 
@@ -102,6 +108,10 @@ struct RenderSettings {
     // Renders of one process (`fenestra batch`): the device scene (BVH, materials, textures) of the
     // same geometry on the same context is built once (render/device_scene.h).
     DeviceSceneCache* sceneCache = nullptr;
+    // The members this render's paths are shared with (team/team.h: MPI ranks), each tracing its
+    // share of every pass on its own device; the image is the one a single process gives, bit for
+    // bit. Null: this process alone.
+    Team* team = nullptr;
 };
 
 struct RenderResult {
@@ -143,6 +153,9 @@ struct RenderResult {
     // The camera pass: its mode, samples, the share of the render's device time it took and its
     // predicted share of the image's variance (render_cmd.cpp writes it as JSON camera_pass).
     nlohmann::json cameraPass;
+    // The team's part (render_cmd.cpp writes it as JSON team): members, their shares of the
+    // paths, and the reductions' count, bytes and seconds; null for one process.
+    nlohmann::json team;
     double cameraSamplesPerPixel = 0.0;  // mean over the pixels, all counted batches
     double roiMean(std::size_t k) const;
     double roiMeanStdErr(std::size_t k) const;

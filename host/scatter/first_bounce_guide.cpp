@@ -177,6 +177,9 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
     clearStats();
 }
 
+static_assert(FEN_GUIDE_SUMSQ_LO == 0 && FEN_GUIDE_CONNECTIONS == 2 && FEN_GUIDE_STATS_WORDS == 3,
+              "a leaf's statistics as summed() describes them: a 128-bit sum and a count");
+
 void FirstBounceGuide::clearStats()
 {
     ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0,

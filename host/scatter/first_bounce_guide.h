@@ -49,6 +49,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "team/summed_buffer.h"
+
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
@@ -107,6 +109,8 @@ public:
     const cl::Buffer& params() const { return params_; }
     const cl::Buffer& tables() const { return tables_; }
     const cl::Buffer& stats() const { return stats_; }
+    // The statistics as a team sums them (team/shared_sums.h): per leaf, a 128-bit sum and a count.
+    SummedBuffer summed() const { return {&stats_, opt_.enabled ? leafCount_ : 0, {2, 1}}; }
     std::size_t deviceBytes() const { return deviceBytes_; }
 
     // After a pass: statistics into the totals, trees refined, new tables up, statistics cleared.

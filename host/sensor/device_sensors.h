@@ -14,6 +14,7 @@
 #include "annual/sky_patches.h"
 #include "sensor/sensor_set.h"
 #include "shared/fen_sensor.h"
+#include "team/summed_buffer.h"
 
 namespace fen {
 
@@ -47,6 +48,8 @@ public:
     const cl::Buffer& bucketStart() const { return bucketStart_; }
     const cl::Buffer& bucketCells() const { return bucketCells_; }
     const cl::Buffer& accumulators() const { return accum_; }
+    // The accumulators (cells, then the coefficient matrices) as a team sums them: 128-bit each.
+    SummedBuffer summed() const { return {&accum_, cells_ ? accumWords() / 2 : 0, {2}}; }
     // Each cell's factor on what it adds to a learning strategy's statistics (lib/sensor.h): 1
     // (the absolute target) until setSteer() says otherwise.
     const cl::Buffer& steer() const { return steer_; }

@@ -1,0 +1,76 @@
+// team.h — the members that share one render's light paths: MPI ranks (team/mpi_team.h), or one
+// process alone (DESIGN.md §9 "Several processes, one image").
+//
+// Every light path is a function of the seed and its index alone, and every sum on the device is
+// of integers, so the work splits exactly: each member traces its share of each pass's path
+// indices, and the members' integer sums added together are the one process's sums, bit for bit
+// (team/shared_sums.h). A team therefore needs only three collective operations, each called by
+// every member in the same order: an exact 128-bit sum, the root's bytes to everyone, and one
+// number from each member to everyone. Everything else -- the statistics, the learning, the
+// decisions to stop -- each member computes from identical inputs, or takes from the root.
+// Invariant: a solo team's operations change nothing, so a render of one member is the plain one.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fen {
+
+// An unsigned 128-bit integer as the device's accumulators hold it (kernels/lib/accumulate.h):
+// the low and the high 64-bit word. Sums wrap modulo 2^128.
+struct U128 {
+    std::uint64_t lo = 0, hi = 0;
+};
+
+inline U128 add128(U128 a, U128 b)
+{
+    U128 s;
+    s.lo = a.lo + b.lo;
+    s.hi = a.hi + b.hi + (s.lo < a.lo ? 1u : 0u);
+    return s;
+}
+
+inline U128 sub128(U128 a, U128 b)
+{
+    U128 d;
+    d.lo = a.lo - b.lo;
+    d.hi = a.hi - b.hi - (a.lo < b.lo ? 1u : 0u);
+    return d;
+}
+
+class Team {
+public:
+    virtual ~Team() = default;
+    virtual int rank() const = 0;
+    virtual int size() const = 0;
+    // The rank among the members on this machine: which of its devices this member takes.
+    virtual int localRank() const = 0;
+    bool root() const { return rank() == 0; }
+    // Replaces v, on every member, with the element-wise sum of all members' v (same length
+    // everywhere), exactly, modulo 2^128.
+    virtual void sum(std::vector<U128>& v) = 0;
+    // Replaces `bytes` on every member with the root's.
+    virtual void broadcast(std::string& bytes) = 0;
+    // Every member's value, in rank order, on every member.
+    virtual std::vector<double> gather(double value) = 0;
+    // What it is, for messages and the JSON: "1 process", "MPI, 3 ranks".
+    virtual std::string describe() const = 0;
+};
+
+// The team of one: this process alone.
+Team& soloTeam();
+// The team this process belongs to: soloTeam() unless main() joined another (setProcessTeam).
+Team& processTeam();
+void setProcessTeam(Team* team);
+
+// Derived operations, the same on every team.
+// The root's value, on every member.
+double fromRoot(Team& team, double value);
+bool fromRoot(Team& team, bool value);
+// True on every member when it is true on any.
+bool anyMember(Team& team, bool value);
+// The sum of a count over the members.
+std::uint64_t sumOver(Team& team, std::uint64_t value);
+
+}  // namespace fen

@@ -1,0 +1,155 @@
+// team_test.cpp — `mpirun -np N fenestra render` and `--device all` as a user runs them
+// (host/team/; DESIGN.md §9):
+// the ranks share every pass's paths, and the outputs are the bytes one process writes, for each
+// emission method (adaptive with its learning passes) and with sensor cells; a render stopped by
+// SIGTERM on every rank (what a batch scheduler sends) leaves a checkpoint that another number of
+// ranks resumes to the same bytes; a killed rank ends the job with an error in bounded time; and
+// only `render` runs under mpirun; two devices of one process write the bytes of one. Ranks and
+// devices are oversubscribed on the CI's 2 cores.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "e2e/cli_run.h"
+#include "support/gltf_writer.h"
+
+namespace fen {
+namespace {
+
+using test::CliRun;
+using test::run;
+using test::slurp;
+
+// Two PoCL devices (POCL_DEVICES makes two of the CPU): `--device all` shares the paths between
+// them, and the bytes are those of one; a list naming a device twice is refused in one line.
+TEST(TeamDevices, TwoDevicesOfOneProcessWriteTheBytesOfOne)
+{
+    const std::string dir = test::tempDir("team-devices");
+    const std::string scene = std::string(FEN_SCENES_DIR) + "/room.gltf";
+    const std::string env = "POCL_DEVICES='pthread pthread'";
+    const std::string args = " --method adaptive --paths 400000 --batches 4 --width 48 --seed 3 --work-plane floor "
+                             "--no-progress";
+    const CliRun one = run("render " + scene + " --out " + dir + "/one.exr --device 0" + args, env);
+    ASSERT_EQ(one.status, 0) << one.err;
+    const CliRun two = run("render " + scene + " --out " + dir + "/two.exr --device all" + args, env);
+    ASSERT_EQ(two.status, 0) << two.err;
+    EXPECT_EQ(slurp(dir + "/two.exr"), slurp(dir + "/one.exr"));
+    EXPECT_EQ(slurp(dir + "/two.noise.exr"), slurp(dir + "/one.noise.exr"));
+    EXPECT_EQ(slurp(dir + "/two.sensors.csv"), slurp(dir + "/one.sensors.csv"));
+    const auto j = nlohmann::json::parse(slurp(dir + "/two.json"));
+    EXPECT_EQ(j["team"]["members"], 2);
+    EXPECT_EQ(j["team"]["kind"], "2 devices");
+    EXPECT_EQ(j["counters"], nlohmann::json::parse(slurp(dir + "/one.json"))["counters"]);
+    EXPECT_NE(j["device"].get<std::string>().find(" + "), std::string::npos);
+    test::expectError(run("render " + scene + " --out " + dir + "/x.exr --device 0,0" + args, env), 1,
+                      "is named twice");
+}
+
+#ifdef FEN_HAVE_MPI
+
+// mpirun as root, with more ranks than cores; the tests' environment reaches the ranks.
+std::string mpirun(int ranks)
+{
+    return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
+           "mpirun --oversubscribe -np " + std::to_string(ranks);
+}
+
+const std::string kRoom = std::string(FEN_SCENES_DIR) + "/room.gltf";
+
+class TeamMethods : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(TeamMethods, OneTwoAndThreeRanksWriteTheBytesOfOneProcess)
+{
+    // 4 batches of 100 000 paths: adaptive emission learns in passes of 65 536 doubling, so
+    // passes cross batch ends and the members' statistics are summed mid-batch too.
+    const std::string dir = test::tempDir(std::string("team-") + GetParam());
+    const std::string args = " --method " + std::string(GetParam()) +
+                             " --paths 400000 --batches 4 --width 48 --seed 3 --work-plane floor --no-progress";
+    const CliRun one = run("render " + kRoom + " --out " + dir + "/one.exr" + args);
+    ASSERT_EQ(one.status, 0) << one.err;
+    const std::string image = slurp(dir + "/one.exr"), noise = slurp(dir + "/one.noise.exr"),
+                      cells = slurp(dir + "/one.sensors.csv");
+    ASSERT_FALSE(image.empty());
+    ASSERT_FALSE(cells.empty());
+    for (int ranks : {1, 2, 3}) {
+        const std::string out = dir + "/np" + std::to_string(ranks);
+        const CliRun r = run("render " + kRoom + " --out " + out + ".exr" + args, mpirun(ranks));
+        ASSERT_EQ(r.status, 0) << ranks << " ranks: " << r.err;
+        EXPECT_EQ(slurp(out + ".exr"), image) << ranks << " ranks";
+        EXPECT_EQ(slurp(out + ".noise.exr"), noise) << ranks << " ranks";
+        EXPECT_EQ(slurp(out + ".sensors.csv"), cells) << ranks << " ranks";
+        const auto j = nlohmann::json::parse(slurp(out + ".json"));
+        const auto plain = nlohmann::json::parse(slurp(dir + "/one.json"));
+        // the counters are the team's sums: those of one process
+        EXPECT_EQ(j["counters"], plain["counters"]) << ranks << " ranks";
+        if (ranks > 1) {
+            EXPECT_EQ(j["team"]["members"], ranks);
+            EXPECT_GT(j["team"]["reductions"].get<int>(), 0);
+            EXPECT_GT(j["team"]["bytes"].get<double>(), 0.0);
+        } else {
+            EXPECT_FALSE(j.contains("team"));
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, TeamMethods, ::testing::Values("uniform", "portal", "adaptive"));
+
+TEST(Team, AStoppedTeamResumesWithAnotherNumberOfRanksToTheSameBytes)
+{
+    // SIGTERM to every rank stops the team at the batch in flight; the root writes the
+    // checkpoint; three ranks resume it, and the image is the uninterrupted one's.
+    const std::string dir = test::tempDir("team-resume");
+    const std::string args = " --paths 8388608 --batches 64 --width 32 --seed 9 --no-progress --method adaptive";
+    const CliRun whole = run("render " + kRoom + " --out " + dir + "/whole.exr" + args);
+    ASSERT_EQ(whole.status, 0) << whole.err;
+    const std::string cmd = mpirun(2) + " " + FENESTRA_BIN + " render " + kRoom + " --out " + dir + "/r.exr" + args +
+                            " --checkpoint " + dir + "/c.ckpt 2>" + dir + "/err & pid=$!; sleep 4; "
+                            "pkill -TERM -f \"^" + FENESTRA_BIN + " render .*r.exr\"; wait $pid; echo $? >" + dir + "/status";
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
+    EXPECT_NE(std::stoi(slurp(dir + "/status")), 0) << slurp(dir + "/err");
+    ASSERT_FALSE(slurp(dir + "/c.ckpt").empty()) << slurp(dir + "/err");
+    const CliRun r = run("render " + kRoom + " --out " + dir + "/r.exr" + args + " --resume " + dir + "/c.ckpt", mpirun(3));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(slurp(dir + "/r.exr"), slurp(dir + "/whole.exr"));
+    const auto j = nlohmann::json::parse(slurp(dir + "/r.json"));
+    EXPECT_GT(j["checkpoint"]["resumed_batches"].get<int>(), 0);
+    EXPECT_LT(j["checkpoint"]["resumed_batches"].get<int>(), 64);
+}
+
+TEST(Team, AKilledRankEndsTheJobWithAnErrorInBoundedTime)
+{
+    // A minute's render; one rank killed 5 s in. The job must end well before the minute, with a
+    // non-zero status and a message naming what failed -- not hang in a collective.
+    const std::string dir = test::tempDir("team-kill");
+    const std::string tag = dir + "/k.exr";
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string cmd = mpirun(2) + " " + FENESTRA_BIN + " render " + kRoom + " --out " + tag +
+                            " --time 60 --width 32 --no-progress >/dev/null 2>" + dir + "/err & pid=$!; sleep 5; "
+                            "pkill -KILL -n -f \"^" + FENESTRA_BIN + " render .*" + tag + "\"; wait $pid; echo $? >" + dir + "/status";
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_NE(std::stoi(slurp(dir + "/status")), 0);
+    EXPECT_LT(seconds, 40.0);
+    EXPECT_NE(slurp(dir + "/err").find("signal 9"), std::string::npos) << slurp(dir + "/err");
+}
+
+TEST(Team, OnlyRenderRunsUnderMpirun)
+{
+    const CliRun r = run("devices", mpirun(2));
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("fenestra: error: under mpirun only `fenestra render` shares its work"), std::string::npos)
+        << r.err;
+}
+
+#else
+
+TEST(Team, BuiltWithoutMpi) { GTEST_SKIP() << "built without MPI: mpirun renders are not part of this build"; }
+
+#endif
+
+}  // namespace
+}  // namespace fen
