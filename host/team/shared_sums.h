@@ -30,8 +30,9 @@ public:
     void before(std::vector<SummedBuffer> buffers);
     // The pass is done: every buffer holds the team's sums; `extra` is summed alongside.
     void after(std::vector<U128>& extra);
-    // The reductions so far: how many, their bytes each way per member, and their wall seconds
-    // (device reads and writes included).
+    // The reductions so far: how many, their bytes each way per member, and their wall seconds:
+    // in all, and apart the device's reads and writes, the host's differences and additions, and
+    // the collective (which includes waiting for the slowest member).
     nlohmann::json report() const;
     double seconds() const { return seconds_; }
 
@@ -39,9 +40,10 @@ private:
     ocl::Context& ctx_;
     Team& team_;
     std::vector<SummedBuffer> buffers_;
-    std::vector<std::vector<std::uint64_t>> before_;
+    std::vector<std::vector<std::uint64_t>> before_, now_;  // per buffer; kept between passes
+    std::vector<U128> delta_;
     std::uint64_t reductions_ = 0, bytes_ = 0;
-    double seconds_ = 0.0;
+    double seconds_ = 0.0, deviceSeconds_ = 0.0, hostSeconds_ = 0.0, collectiveSeconds_ = 0.0;
 };
 
 }  // namespace fen
