@@ -35,13 +35,13 @@ int fail(const std::string& message, int code)
     // rank fails alike (bad input), the root's line comes first and its abort ends the others
     // before they print theirs; a rank that fails alone says which it is.
     fen::Team& team = fen::processTeam();
-    if (team.size() > 1 && !team.root())
+    if (team.size() > 1 && !team.root() && !fen::lastCollectiveDone())
         std::this_thread::sleep_for(std::chrono::seconds(1));
     const std::string who = team.size() > 1 && !team.root() ? fen::cat("rank ", team.rank(), ": ") : "";
     // One line, whatever a message quotes: control characters are escaped here, at the boundary.
     std::fprintf(stderr, "fenestra: error: %s%s\n", who.c_str(), fen::printable(message, 4000).c_str());
 #ifdef FEN_HAVE_MPI
-    if (team.size() > 1) {
+    if (team.size() > 1 && !fen::lastCollectiveDone()) {
         std::fflush(stderr);
         fen::abortMpi(code);
     }
@@ -159,9 +159,10 @@ int main(int argc, char** argv)
         return fail(fen::printable(e.what(), 400) + " (see fenestra --help)", 2);
     }
 
-    if (fen::processTeam().size() > 1 && !*renderCmd)
-        return fail(fen::cat("under mpirun only `fenestra render` shares its work over the ranks (",
-                             fen::processTeam().describe(), "); run `fenestra ", argv[1], "` as one process"),
+    if (fen::processTeam().size() > 1 && !*renderCmd && !*batchCmd)
+        return fail(fen::cat("under mpirun only `fenestra render` and `fenestra batch` share their work over the "
+                             "ranks (", fen::processTeam().describe(), "); run `fenestra ", argv[1],
+                             "` as one process"),
                     2);
     try {
         if (*devices)

@@ -26,6 +26,7 @@
 #include "render/render_options.h"
 #include "util/error.h"
 #include "util/fnv.h"
+#include "team/team.h"
 #include "util/stop_signals.h"
 
 namespace fen {
@@ -221,6 +222,17 @@ nlohmann::json jobFigures(const nlohmann::json& r)
     return f;
 }
 
+// A job's line in the batch's state: a finished job with what makes it finished (its key, inputs
+// and JSON), for a rerun to skip; anything else, no line (the job runs again).
+void recordState(nlohmann::json& state, const std::string& name, const Outcome& o, const std::string& key)
+{
+    if (o.status == "done")
+        state["jobs"][name] = {{"status", "done"}, {"key", key}, {"inputs", o.inputs}, {"json", o.json}};
+    else
+        state["jobs"].erase(name);
+    makeUtf8(state);
+}
+
 // One job: parsed as `fenestra render` parses its arguments, run on the shared context. Its key is
 // taken from its inputs as they were read, before it renders (a file edited meanwhile makes the
 // next run run it again).
@@ -243,6 +255,7 @@ Outcome runJob(const Job& job, ocl::Context& ctx, DeviceSceneCache& scenes, cons
         throw Error("--device: a batch runs every job on its own device (fenestra batch --device)");
     validateRenderOptions(opt);
     RenderHooks hooks;
+    hooks.team = &soloTeam();  // a job is one rank's, also under mpirun
     hooks.context = &ctx;
     hooks.sceneCache = &scenes;
     hooks.onInputs = [&](const std::vector<std::string>& inputs, const std::string& json) {
@@ -274,15 +287,30 @@ int runBatch(const BatchOptions& options)
         state["jobs"] = nlohmann::json::object();
     }
     const StopSignals signals;  // one for the whole batch: a stop between jobs is seen too
-    auto ctx = std::make_unique<ocl::Context>(ocl::selectDevice(options.device));
+    // Under mpirun the ranks take the jobs as they come free (a shared ticket counter), each job
+    // on one rank's device; rank 0 then gathers the outcomes and writes the state and summaries.
+    Team& team = processTeam();
+    const bool spread = team.size() > 1;
+    auto ctx = std::make_unique<ocl::Context>(ocl::selectDevice(options.device, team.localRank()));
     DeviceSceneCache scenes;  // a scene's BVH and buffers, kept while its jobs follow one another
-    std::fprintf(stderr, "fenestra: batch %s: %zu jobs on %s\n", printable(options.jobsPath).c_str(), jobs.size(),
-                 ctx->info().label().c_str());
+    const std::string rankTag = spread ? cat(" (rank ", team.rank(), ")") : "";
+    std::fprintf(stderr, "fenestra: batch %s: %zu jobs on %s%s\n", printable(options.jobsPath).c_str(), jobs.size(),
+                 ctx->info().label().c_str(), rankTag.c_str());
 
-    std::vector<Outcome> outcomes;
+    std::vector<Outcome> outcomes(jobs.size());
+    std::vector<std::string> keys(jobs.size());  // of the jobs done here, for the state
+    for (Outcome& o : outcomes)
+        o.status = "not run";
     int failed = 0;
     bool stopped = false;
-    for (std::size_t i = 0; i < jobs.size() && !(stopped = StopSignals::requested()); ++i) {
+    std::uint64_t sequence = 0;
+    for (;;) {
+        if ((stopped = StopSignals::requested()))
+            break;
+        const std::uint64_t ticket = spread ? team.ticket() : sequence++;
+        if (ticket >= jobs.size())
+            break;
+        const std::size_t i = static_cast<std::size_t>(ticket);
         const Job& job = jobs[i];
         const auto t0 = std::chrono::steady_clock::now();
         Outcome o;
@@ -295,8 +323,8 @@ int runBatch(const BatchOptions& options)
             o.status = "skipped";
             o.json = json;
         }
-        std::fprintf(stderr, "fenestra: batch [%zu/%zu] %s: %s\n", i + 1, jobs.size(), job.name.c_str(),
-                     o.status == "skipped" ? "unchanged since it finished, skipped" : "running");
+        std::fprintf(stderr, "fenestra: batch [%zu/%zu] %s: %s%s\n", i + 1, jobs.size(), job.name.c_str(),
+                     o.status == "skipped" ? "unchanged since it finished, skipped" : "running", rankTag.c_str());
         if (o.status.empty()) {
             key.clear();
             try {
@@ -323,21 +351,51 @@ int runBatch(const BatchOptions& options)
                 std::fprintf(stderr, "fenestra: batch [%zu/%zu] %s: failed: %s\n", i + 1, jobs.size(),
                              job.name.c_str(), printable(o.error, 4000).c_str());
             }
-            if (o.status == "done")
-                state["jobs"][job.name] = {{"status", "done"}, {"key", key}, {"inputs", o.inputs}, {"json", o.json}};
-            else
-                state["jobs"].erase(job.name);
-            makeUtf8(state);
-            writeText(statePath, state.dump(1) + "\n");
+            keys[i] = key;
+            if (!spread) {  // spread, rank 0 writes the state once it has every rank's outcomes
+                recordState(state, job.name, o, key);
+                writeText(statePath, state.dump(1) + "\n");
+            }
         }
         if (!o.json.empty() && (o.status == "done" || o.status == "skipped" || o.status == "stopped")) {
             std::string text;
             if (readBytes(o.json, &text))
                 o.figures = jobFigures(nlohmann::json::parse(text, nullptr, false));
         }
-        outcomes.push_back(o);
+        outcomes[i] = o;
         if (o.status == "stopped")
             stopped = true;
+    }
+    if (spread) {
+        // every rank's outcomes to rank 0, which alone goes on to write
+        nlohmann::json mine = nlohmann::json::array();
+        for (std::size_t i = 0; i < jobs.size(); ++i)
+            if (outcomes[i].status != "not run")
+                mine.push_back({{"job", i}, {"status", outcomes[i].status}, {"seconds", outcomes[i].seconds},
+                                {"json", outcomes[i].json}, {"error", outcomes[i].error},
+                                {"inputs", outcomes[i].inputs}, {"key", keys[i]}, {"figures", outcomes[i].figures}});
+        makeUtf8(mine);
+        const std::vector<std::string> all = team.gatherToRoot(mine.dump());
+        stopped = anyMember(team, stopped);
+        markLastCollectiveDone();
+        if (!team.root())
+            return stopped ? 130 : 0;
+        failed = 0;
+        for (const std::string& text : all)
+            for (const nlohmann::json& e : nlohmann::json::parse(text)) {
+                const std::size_t i = e["job"].get<std::size_t>();
+                Outcome& o = outcomes[i];
+                o.status = e["status"];
+                o.seconds = e["seconds"];
+                o.json = e["json"];
+                o.error = e["error"];
+                o.inputs = e["inputs"].get<std::vector<std::string>>();
+                o.figures = e["figures"];
+                failed += o.status == "failed" ? 1 : 0;
+                if (o.status != "skipped")
+                    recordState(state, jobs[i].name, o, e["key"]);
+            }
+        writeText(statePath, state.dump(1) + "\n");
     }
 
     // The summary: every job, run or not.
@@ -345,11 +403,7 @@ int runBatch(const BatchOptions& options)
     std::string csv =
         "name,status,seconds,paths,mean_luminance_cd_m2,noise_std_err_cd_m2,sensors_mean_lux,sda_pct,ase_pct,json,error\n";
     for (std::size_t i = 0; i < jobs.size(); ++i) {
-        Outcome o;
-        if (i < outcomes.size())
-            o = outcomes[i];
-        else
-            o.status = "not run";
+        const Outcome& o = outcomes[i];
         nlohmann::json e = {{"name", jobs[i].name}, {"status", o.status}, {"seconds", o.seconds},
                             {"json", o.json.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.json)},
                             {"error", o.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.error)}};

@@ -217,7 +217,7 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     if (!checkpointPath.empty())
         outputSet.push_back(checkpointPath);
     // In a team (mpirun) the root alone writes, warns and shows progress; the others trace.
-    Team& team = processTeam();
+    Team& team = hooks.team ? *hooks.team : processTeam();
     std::optional<OutputSetLock> outputLock;
     if (team.root())
         outputLock.emplace(outputSet);
@@ -371,6 +371,8 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
         r = renderOnDevices(contexts, scene, sky, camera, width, height, settings);
         warnPaths();
     }
+    if (&team == &processTeam())
+        markLastCollectiveDone();
     if (!team.root())  // the root writes the outputs, and reports a failed checkpoint
         return r.interrupted ? 130 : 0;
 

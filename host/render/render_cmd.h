@@ -13,6 +13,7 @@ namespace ocl {
 class Context;
 }
 class DeviceSceneCache;
+class Team;
 
 // What a caller running many renders in one process (`fenestra batch`) shares with a render and
 // learns from it. All optional.
@@ -23,6 +24,9 @@ struct RenderHooks {
     // read (scene, its buffers and textures, the reference, sensor points, weather, the checkpoint
     // it resumes) and its JSON output's path.
     std::function<void(const std::vector<std::string>& inputs, const std::string& jsonPath)> onInputs;
+    // The members sharing the render (team/team.h); null: the process's (mpirun's ranks, or one).
+    // A batch under mpirun renders each job on one rank: the team of one.
+    Team* team = nullptr;
 };
 
 // Returns the exit status: 0, or 130 when a signal stopped the render early (its outputs are

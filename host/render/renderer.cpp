@@ -203,10 +203,15 @@ struct Renderer::Impl {
         memberPaths = 0;
     }
 
-    // The device buffers a pass adds to, as a team sums them.
-    std::vector<SummedBuffer> summedBuffers() const
+    // The device buffers a pass adds to, as a team sums them after it: the strategy's statistics
+    // always; the film and sensor cells (`image`) only where something reads them mid-batch -- a
+    // strategy that steers by pixel -- else once, at the batch's end (the film is 93 % of a
+    // 1920 x 1080 render's summed bytes: docs/results/scaling.md).
+    std::vector<SummedBuffer> summedBuffers(bool image) const
     {
-        std::vector<SummedBuffer> b{film.summed(), sensors.summed()};
+        std::vector<SummedBuffer> b;
+        if (image)
+            b = {film.summed(), sensors.summed()};
         for (const SummedBuffer& s : strategy->summedBuffers())
             b.push_back(s);
         return b;
@@ -332,7 +337,7 @@ struct Renderer::Impl {
             const std::uint64_t n = std::min(count - done, std::max<std::uint64_t>(1, strategy->passLimit()));
             setPickLattice(base + done, n);
             const auto [lo, hi] = memberRange(base + done, n);
-            sums.before(summedBuffers());
+            sums.before(summedBuffers(steersByPixel));
             const auto t0 = Clock::now();
             std::uint64_t ran = loop->run(lo, hi - lo, counts, onIteration, abort);
             memberSeconds += since(t0);
@@ -353,6 +358,12 @@ struct Renderer::Impl {
             // the render loop: not twice.
             if (done < count || !stats)
                 estimateImage(stats, done);
+        }
+        if (team.size() > 1 && !steersByPixel) {
+            // the film and cells, cleared at the batch's start and not summed since: from zero
+            sums.before({film.summed(), sensors.summed()}, true);
+            std::vector<U128> none;
+            sums.after(none);
         }
         const std::uint64_t shadowBefore = counts.shadowRays;
         if (team.size() > 1)  // the host counts extension rays: the team's, as the device counters

@@ -50,9 +50,17 @@ public:
         check(MPI_Type_contiguous(2, MPI_UINT64_T, &u128_), "MPI_Type_contiguous");
         check(MPI_Type_commit(&u128_), "MPI_Type_commit");
         check(MPI_Op_create(&add128Op, 1, &add_), "MPI_Op_create");
+        // the ticket counter: one word on rank 0, taken by atomic fetch-and-add (passive target,
+        // so that rank 0 need not be in MPI for another rank to take a ticket)
+        check(MPI_Win_allocate(rank_ == 0 ? 8 : 0, 8, MPI_INFO_NULL, MPI_COMM_WORLD, &counter_, &window_),
+              "MPI_Win_allocate");
+        if (rank_ == 0)
+            *counter_ = 0;
+        MPI_Barrier(MPI_COMM_WORLD);
     }
     ~MpiTeam() override
     {
+        MPI_Win_free(&window_);
         MPI_Op_free(&add_);
         MPI_Type_free(&u128_);
         MPI_Finalize();
@@ -86,12 +94,48 @@ public:
         check(MPI_Allgather(&value, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, MPI_COMM_WORLD), "gather");
         return all;
     }
+    std::vector<std::string> gatherToRoot(const std::string& text) override
+    {
+        const int n = static_cast<int>(std::min<std::size_t>(text.size(), std::size_t{1} << 30));
+        std::vector<int> sizes(static_cast<std::size_t>(size_)), offsets(static_cast<std::size_t>(size_));
+        check(MPI_Gather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "gather");
+        std::string all;
+        if (rank_ == 0) {
+            long long total = 0;
+            for (int k = 0; k < size_; ++k) {
+                offsets[static_cast<std::size_t>(k)] = static_cast<int>(total);
+                total += sizes[static_cast<std::size_t>(k)];
+            }
+            if (total > (1ll << 30))
+                throw Error("MPI: the ranks' texts exceed 1 GiB together");
+            all.resize(static_cast<std::size_t>(total));
+        }
+        check(MPI_Gatherv(text.data(), n, MPI_BYTE, all.data(), sizes.data(), offsets.data(), MPI_BYTE, 0,
+                          MPI_COMM_WORLD),
+              "gather");
+        std::vector<std::string> out;
+        if (rank_ == 0)
+            for (int k = 0; k < size_; ++k)
+                out.push_back(all.substr(static_cast<std::size_t>(offsets[static_cast<std::size_t>(k)]),
+                                         static_cast<std::size_t>(sizes[static_cast<std::size_t>(k)])));
+        return out;
+    }
+    std::uint64_t ticket() override
+    {
+        std::uint64_t one = 1, got = 0;
+        check(MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window_), "ticket");
+        check(MPI_Fetch_and_op(&one, &got, MPI_UINT64_T, 0, 0, MPI_SUM, window_), "ticket");
+        check(MPI_Win_unlock(0, window_), "ticket");
+        return got;
+    }
     std::string describe() const override { return cat("MPI, ", size_, size_ == 1 ? " rank" : " ranks"); }
 
 private:
     int rank_ = 0, size_ = 1, localRank_ = 0;
     MPI_Datatype u128_{};
     MPI_Op add_{};
+    MPI_Win window_{};
+    std::uint64_t* counter_ = nullptr;
 };
 
 }  // namespace

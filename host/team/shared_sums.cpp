@@ -24,9 +24,10 @@ void readWords(ocl::Context& ctx, const SummedBuffer& b, std::vector<std::uint64
 
 }  // namespace
 
-void SharedSums::before(std::vector<SummedBuffer> buffers)
+void SharedSums::before(std::vector<SummedBuffer> buffers, bool zero)
 {
     buffers_ = std::move(buffers);
+    zero_ = zero;
     if (team_.size() == 1)
         return;
     before_.resize(buffers_.size());
@@ -37,7 +38,7 @@ void SharedSums::before(std::vector<SummedBuffer> buffers)
             if (f != 1 && f != 2)
                 throw Error(cat("internal error: a summed field of ", f, " words"));
     }
-    for (std::size_t k = 0; k < buffers_.size(); ++k)
+    for (std::size_t k = 0; k < buffers_.size() && !zero_; ++k)
         readWords(ctx_, buffers_[k], before_[k]);
     const double t = since(t0);
     seconds_ += t;
@@ -62,13 +63,14 @@ void SharedSums::after(std::vector<U128>& extra)
     delta.reserve(fields);
     for (std::size_t k = 0; k < buffers_.size(); ++k) {
         const std::vector<std::uint64_t>& a = now[k];
-        const std::vector<std::uint64_t>& b = before_[k];
+        const std::uint64_t* b = zero_ ? nullptr : before_[k].data();  // null: zeros
+        const auto was = [b](std::size_t i) { return b ? b[i] : std::uint64_t{0}; };
         for (std::size_t i = 0; i < a.size();)
             for (int f : buffers_[k].fields) {
                 if (f == 2)
-                    delta.push_back(sub128({a[i], a[i + 1]}, {b[i], b[i + 1]}));
+                    delta.push_back(sub128({a[i], a[i + 1]}, {was(i), was(i + 1)}));
                 else
-                    delta.push_back({a[i] - b[i], 0});
+                    delta.push_back({a[i] - was(i), 0});
                 i += static_cast<std::size_t>(f);
             }
     }
@@ -82,15 +84,16 @@ void SharedSums::after(std::vector<U128>& extra)
     std::size_t d = 0;
     for (std::size_t k = 0; k < buffers_.size(); ++k) {
         std::vector<std::uint64_t>& a = now[k];
-        const std::vector<std::uint64_t>& b = before_[k];
+        const std::uint64_t* b = zero_ ? nullptr : before_[k].data();
+        const auto was = [b](std::size_t i) { return b ? b[i] : std::uint64_t{0}; };
         for (std::size_t i = 0; i < a.size();)
             for (int f : buffers_[k].fields) {
                 if (f == 2) {
-                    const U128 s = add128({b[i], b[i + 1]}, delta[d++]);
+                    const U128 s = add128({was(i), was(i + 1)}, delta[d++]);
                     a[i] = s.lo;
                     a[i + 1] = s.hi;
                 } else {
-                    a[i] = b[i] + delta[d++].lo;
+                    a[i] = was(i) + delta[d++].lo;
                 }
                 i += static_cast<std::size_t>(f);
             }

@@ -26,8 +26,9 @@ namespace fen {
 class SharedSums {
 public:
     SharedSums(ocl::Context& ctx, Team& team) : ctx_(ctx), team_(team) {}
-    // The buffers a pass is about to add to, as they are now.
-    void before(std::vector<SummedBuffer> buffers);
+    // The buffers a pass is about to add to, as they are now; `zero`: they hold zeros on every
+    // member (cleared and not summed since), so nothing is read.
+    void before(std::vector<SummedBuffer> buffers, bool zero = false);
     // The pass is done: every buffer holds the team's sums; `extra` is summed alongside.
     void after(std::vector<U128>& extra);
     // The reductions so far: how many, their bytes each way per member, and their wall seconds:
@@ -42,6 +43,7 @@ private:
     std::vector<SummedBuffer> buffers_;
     std::vector<std::vector<std::uint64_t>> before_, now_;  // per buffer; kept between passes
     std::vector<U128> delta_;
+    bool zero_ = false;
     std::uint64_t reductions_ = 0, bytes_ = 0;
     double seconds_ = 0.0, deviceSeconds_ = 0.0, hostSeconds_ = 0.0, collectiveSeconds_ = 0.0;
 };

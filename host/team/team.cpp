@@ -15,10 +15,16 @@ public:
     void sum(std::vector<U128>&) override {}
     void broadcast(std::string&) override {}
     std::vector<double> gather(double value) override { return {value}; }
+    std::vector<std::string> gatherToRoot(const std::string& text) override { return {text}; }
+    std::uint64_t ticket() override { return next_++; }
     std::string describe() const override { return "1 process"; }
+
+private:
+    std::uint64_t next_ = 0;
 };
 
 Team* current = nullptr;
+bool lastDone = false;
 
 }  // namespace
 
@@ -31,6 +37,10 @@ Team& soloTeam()
 Team& processTeam() { return current ? *current : soloTeam(); }
 
 void setProcessTeam(Team* team) { current = team; }
+
+void markLastCollectiveDone() { lastDone = true; }
+
+bool lastCollectiveDone() { return lastDone; }
 
 double fromRoot(Team& team, double value)
 {

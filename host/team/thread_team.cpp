@@ -39,6 +39,21 @@ public:
             [&] { all = t_.gathered_; });
         return all;
     }
+    std::vector<std::string> gatherToRoot(const std::string& text) override
+    {
+        std::vector<std::string> all;
+        t_.meet(
+            [&] {
+                t_.texts_.resize(static_cast<std::size_t>(t_.size_));
+                t_.texts_[static_cast<std::size_t>(rank_)] = text;
+            },
+            [&] {
+                if (rank_ == 0)
+                    all = t_.texts_;
+            });
+        return all;
+    }
+    std::uint64_t ticket() override { return t_.tickets_++; }
     std::string describe() const override { return cat(t_.size_, " devices"); }
 
 private:
@@ -89,6 +104,7 @@ void ThreadTeam::meet(Deposit deposit, Collect collect)
         sum_.clear();
         bytes_.clear();
         gathered_.clear();
+        texts_.clear();
         cv_.notify_all();
     }
 }

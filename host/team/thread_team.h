@@ -8,6 +8,7 @@
 // reports the first member's own error.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -48,6 +49,8 @@ private:
     std::vector<U128> sum_;
     std::string bytes_;
     std::vector<double> gathered_;
+    std::vector<std::string> texts_;
+    std::atomic<std::uint64_t> tickets_{0};
 };
 
 }  // namespace fen

@@ -1,15 +1,18 @@
 // team_test.cpp — `mpirun -np N fenestra render` and `--device all` as a user runs them
 // (host/team/; DESIGN.md §9):
 // the ranks share every pass's paths, and the outputs are the bytes one process writes, for each
-// emission method (adaptive with its learning passes) and with sensor cells; a render stopped by
+// emission method (adaptive with its learning passes) and with sensor cells, and for an annual
+// study's daylight coefficients; a render stopped by
 // SIGTERM on every rank (what a batch scheduler sends) leaves a checkpoint that another number of
-// ranks resumes to the same bytes; a killed rank ends the job with an error in bounded time; and
-// only `render` runs under mpirun; two devices of one process write the bytes of one. Ranks and
+// ranks resumes to the same bytes; a killed rank ends the job with an error in bounded time; a
+// batch's jobs spread over ranks write what one process writes, and a rerun skips them; only
+// `render` and `batch` run under mpirun; two devices of one process write the bytes of one. Ranks and
 // devices are oversubscribed on the CI's 2 cores.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -66,8 +69,8 @@ TEST_P(TeamMethods, OneTwoAndThreeRanksWriteTheBytesOfOneProcess)
 {
     // 4 batches of 100 000 paths: adaptive emission learns in passes of 65 536 doubling, so
     // passes cross batch ends and the members' statistics are summed mid-batch too.
-    const std::string dir = test::tempDir(std::string("team-") + GetParam());
-    const std::string args = " --method " + std::string(GetParam()) +
+    const std::string dir = test::tempDir("team-method");
+    const std::string args = " " + std::string(GetParam()) +
                              " --paths 400000 --batches 4 --width 48 --seed 3 --work-plane floor --no-progress";
     const CliRun one = run("render " + kRoom + " --out " + dir + "/one.exr" + args);
     ASSERT_EQ(one.status, 0) << one.err;
@@ -96,7 +99,26 @@ TEST_P(TeamMethods, OneTwoAndThreeRanksWriteTheBytesOfOneProcess)
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, TeamMethods, ::testing::Values("uniform", "portal", "adaptive"));
+// The relative target steers by pixel: the film is summed after every pass, not once a batch.
+INSTANTIATE_TEST_SUITE_P(Methods, TeamMethods,
+                         ::testing::Values("--method uniform", "--method portal", "--method adaptive",
+                                           "--method adaptive --adaptive-target relative"));
+
+TEST(Team, AnAnnualStudyWritesTheBytesOfOneProcess)
+{
+    // the daylight-coefficient matrices are summed like the cells (sensor/device_sensors.h)
+    const std::string dir = test::tempDir("team-annual");
+    const std::string args = " --annual " + std::string(FEN_SCENES_DIR) +
+                             "/weather/tmy_45.000_8.000_2005_2016.epw --work-plane floor --paths 400000 --batches 4 "
+                             "--no-progress";
+    ASSERT_EQ(run("render " + kRoom + " --out " + dir + "/one" + args).status, 0);
+    const CliRun r = run("render " + kRoom + " --out " + dir + "/two" + args, mpirun(2));
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* file : {".annual.csv", ".dc.mtx", ".dc-direct.mtx", ".sensors.csv"}) {
+        EXPECT_FALSE(slurp(dir + "/one" + file).empty()) << file;
+        EXPECT_EQ(slurp(dir + "/two" + file), slurp(dir + "/one" + file)) << file;
+    }
+}
 
 TEST(Team, AStoppedTeamResumesWithAnotherNumberOfRanksToTheSameBytes)
 {
@@ -137,12 +159,53 @@ TEST(Team, AKilledRankEndsTheJobWithAnErrorInBoundedTime)
     EXPECT_NE(slurp(dir + "/err").find("signal 9"), std::string::npos) << slurp(dir + "/err");
 }
 
-TEST(Team, OnlyRenderRunsUnderMpirun)
+TEST(Team, OnlyRenderAndBatchRunUnderMpirun)
 {
     const CliRun r = run("devices", mpirun(2));
     EXPECT_NE(r.status, 0);
-    EXPECT_NE(r.err.find("fenestra: error: under mpirun only `fenestra render` shares its work"), std::string::npos)
+    EXPECT_NE(r.err.find("fenestra: error: under mpirun only `fenestra render` and `fenestra batch` share"),
+              std::string::npos)
         << r.err;
+}
+
+TEST(Team, ABatchSpreadOverRanksWritesWhatOneProcessWrites)
+{
+    // Three ranks take five jobs as they come free: every job's image is the bytes the batch of
+    // one process writes, the failing job is reported in the summary, and a rerun under mpirun
+    // skips what the first run finished (rank 0 wrote the state once it had every outcome).
+    const std::string dir = test::tempDir("team-batch");
+    const auto jobsFile = [&](const std::string& tag) {
+        std::string text = "{\"jobs\": [";
+        for (int k = 0; k < 5; ++k) {
+            const std::string scene = k == 3 ? dir + "/none.gltf" : kRoom;
+            text += std::string(k ? ", " : "") + "{\"name\": \"j" + std::to_string(k) + "\", \"render\": [\"" + scene +
+                    "\", \"--paths\", \"200000\", \"--width\", \"32\", \"--seed\", \"" + std::to_string(k + 1) +
+                    "\", \"--no-progress\", \"--out\", \"" + dir + "/" + tag + "_j" + std::to_string(k) + ".exr\"]}";
+        }
+        std::ofstream(dir + "/" + tag + ".json") << text << "]}";
+        return dir + "/" + tag + ".json";
+    };
+    const CliRun one = run("batch " + jobsFile("one"));
+    EXPECT_EQ(one.status, 1) << one.err;
+    const CliRun three = run("batch " + jobsFile("three"), mpirun(3));
+    EXPECT_NE(three.status, 0) << three.err;  // one job failed
+    for (int k : {0, 1, 2, 4}) {
+        const std::string a = slurp(dir + "/one_j" + std::to_string(k) + ".exr");
+        EXPECT_FALSE(a.empty()) << k;
+        EXPECT_EQ(slurp(dir + "/three_j" + std::to_string(k) + ".exr"), a) << "job " << k;
+    }
+    const auto summary = nlohmann::json::parse(slurp(dir + "/three.summary.json"));
+    ASSERT_EQ(summary["jobs"].size(), 5u);
+    EXPECT_EQ(summary["failed"], 1);
+    EXPECT_EQ(summary["jobs"][3]["status"], "failed");
+    EXPECT_NE(summary["jobs"][3]["error"].get<std::string>().find("none.gltf"), std::string::npos);
+    for (int k : {0, 1, 2, 4})
+        EXPECT_EQ(summary["jobs"][k]["status"], "done") << k;
+    run("batch " + dir + "/three.json", mpirun(2));
+    const auto again = nlohmann::json::parse(slurp(dir + "/three.summary.json"));
+    for (int k : {0, 1, 2, 4})
+        EXPECT_EQ(again["jobs"][k]["status"], "skipped") << k;
+    EXPECT_EQ(again["jobs"][3]["status"], "failed");
 }
 
 #else
