@@ -280,12 +280,20 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
             read.push_back(resumePath);
         hooks.onInputs(read, jsonPath);
     }
-    // What the film and the path pool will take, against what each device and the host have.
-    for (const ocl::Context* c : contexts)
-        checkMemoryNeeds(renderMemoryNeeds(width, height,
-                                           opt.poolSize ? static_cast<std::uint64_t>(*opt.poolSize)
-                                                        : defaultPoolSlots(c->info())),
-                         c->info());
+    // What the film and the path pool will take, against what each device and the host have; in a
+    // team also the film's copy and differences (team/shared_sums.h), on the device and the host.
+    const bool sharing = team.size() > 1 || contexts.size() > 1;
+    for (const ocl::Context* c : contexts) {
+        MemoryNeeds m = renderMemoryNeeds(width, height,
+                                          opt.poolSize ? static_cast<std::uint64_t>(*opt.poolSize)
+                                                       : defaultPoolSlots(c->info()));
+        if (sharing) {
+            const std::uint64_t film = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * 48;
+            m.deviceBytes += 2 * film;
+            m.hostBytes += film;
+        }
+        checkMemoryNeeds(m, c->info());
+    }
     if (opt.annual.weather) {
         // The daylight coefficients: two cells x patches matrices of 128-bit sums on the device
         // (one buffer with the cells'); on the host each batch's read-back (16 + 8 bytes an entry)

@@ -347,6 +347,7 @@ struct Renderer::Impl {
                 // the team's paths of the pass, and whether a stop cut any member's share short
                 std::vector<U128> extra{{ran, 0}, {cut ? 1u : 0u, 0}};
                 sums.after(extra);
+                pathsDone += extra[0].lo - ran;  // the progress line counts the team's paths
                 ran = extra[0].lo;
                 cut = extra[1].lo != 0;
             }

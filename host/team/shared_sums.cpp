@@ -3,6 +3,7 @@
 
 #include <chrono>
 
+#include "cl/launch.h"
 #include "util/error.h"
 
 namespace fen {
@@ -13,16 +14,40 @@ using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Into `w`, whose memory is kept from pass to pass: a film's worth of fresh pages each pass would
-// cost as much as reading it.
-void readWords(ocl::Context& ctx, const SummedBuffer& b, std::vector<std::uint64_t>& w)
+// The layout as the kernels take it: field count, and bit f set when field f is 128-bit.
+cl_uint wideMask(const SummedBuffer& b)
 {
-    w.resize(b.records * b.recordWords());
-    if (!w.empty())
-        ctx.queue().enqueueReadBuffer(*b.buffer, CL_TRUE, 0, w.size() * 8, w.data());
+    if (b.fields.empty() || b.fields.size() > 32)
+        throw Error(cat("internal error: a summed record of ", b.fields.size(), " fields"));
+    cl_uint mask = 0;
+    for (std::size_t f = 0; f < b.fields.size(); ++f) {
+        if (b.fields[f] != 1 && b.fields[f] != 2)
+            throw Error(cat("internal error: a summed field of ", b.fields[f], " words"));
+        if (b.fields[f] == 2)
+            mask |= 1u << f;
+    }
+    return mask;
+}
+
+// `slot` at least `bytes` long (a buffer of 16 bytes or more; kept when long enough).
+void ensure(ocl::Context& ctx, cl::Buffer& slot, std::size_t& have, std::size_t bytes, const char* what)
+{
+    if (have >= bytes && have > 0)
+        return;
+    have = std::max<std::size_t>(bytes, 16);
+    slot = ctx.buffer(CL_MEM_READ_WRITE, have, what);
 }
 
 }  // namespace
+
+SharedSums::SharedSums(ocl::Context& ctx, Team& team) : ctx_(ctx), team_(team)
+{
+    if (team_.size() == 1)
+        return;
+    cl::Program program = ctx_.program("team_sums.cl");
+    difference_ = cl::Kernel(program, "team_difference");
+    add_ = cl::Kernel(program, "team_add");
+}
 
 void SharedSums::before(std::vector<SummedBuffer> buffers, bool zero)
 {
@@ -30,16 +55,18 @@ void SharedSums::before(std::vector<SummedBuffer> buffers, bool zero)
     zero_ = zero;
     if (team_.size() == 1)
         return;
-    before_.resize(buffers_.size());
-    now_.resize(buffers_.size());
     const auto t0 = Clock::now();
-    for (const SummedBuffer& b : buffers_) {
-        for (int f : b.fields)
-            if (f != 1 && f != 2)
-                throw Error(cat("internal error: a summed field of ", f, " words"));
+    scratch_.resize(std::max(scratch_.size(), buffers_.size()));
+    for (std::size_t k = 0; k < buffers_.size(); ++k) {
+        const SummedBuffer& b = buffers_[k];
+        wideMask(b);  // checks the layout
+        const std::size_t bytes = b.records * b.recordWords() * 8;
+        if (zero_ || bytes == 0)
+            continue;
+        ensure(ctx_, scratch_[k].before, scratch_[k].beforeBytes, bytes, "a team's copy of a summed buffer");
+        ctx_.queue().enqueueCopyBuffer(*b.buffer, scratch_[k].before, 0, 0, bytes);
     }
-    for (std::size_t k = 0; k < buffers_.size() && !zero_; ++k)
-        readWords(ctx_, buffers_[k], before_[k]);
+    ctx_.queue().finish();
     const double t = since(t0);
     seconds_ += t;
     deviceSeconds_ += t;
@@ -50,67 +77,55 @@ void SharedSums::after(std::vector<U128>& extra)
     if (team_.size() == 1)
         return;
     const auto t0 = Clock::now();
-    // The changes, one 128-bit value a field (a count's in the low word), then `extra`.
-    std::vector<std::vector<std::uint64_t>>& now = now_;
-    for (std::size_t k = 0; k < buffers_.size(); ++k)
-        readWords(ctx_, buffers_[k], now[k]);
-    const auto t1 = Clock::now();
+    auto& q = ctx_.queue();
+    // The differences: one 128-bit value a field, every buffer's in turn, then `extra`.
     std::size_t fields = extra.size();
-    for (std::size_t k = 0; k < buffers_.size(); ++k)
-        fields += buffers_[k].records * buffers_[k].fields.size();
-    std::vector<U128>& delta = delta_;
-    delta.clear();
-    delta.reserve(fields);
+    for (const SummedBuffer& b : buffers_)
+        fields += b.records * b.fields.size();
+    delta_.resize(fields);
+    std::size_t at = 0;
     for (std::size_t k = 0; k < buffers_.size(); ++k) {
-        const std::vector<std::uint64_t>& a = now[k];
-        const std::uint64_t* b = zero_ ? nullptr : before_[k].data();  // null: zeros
-        const auto was = [b](std::size_t i) { return b ? b[i] : std::uint64_t{0}; };
-        for (std::size_t i = 0; i < a.size();)
-            for (int f : buffers_[k].fields) {
-                if (f == 2)
-                    delta.push_back(sub128({a[i], a[i + 1]}, {was(i), was(i + 1)}));
-                else
-                    delta.push_back({a[i] - was(i), 0});
-                i += static_cast<std::size_t>(f);
-            }
+        const SummedBuffer& b = buffers_[k];
+        const std::size_t n = b.records * b.fields.size();
+        if (n == 0)
+            continue;
+        Scratch& s = scratch_[k];
+        ensure(ctx_, s.delta, s.deltaBytes, n * 16, "a team's differences of a summed buffer");
+        ensure(ctx_, s.before, s.beforeBytes, 16, "a team's copy of a summed buffer");  // bound when zero_
+        ocl::setKernelArgsFrom(difference_, 0, *b.buffer, s.before, static_cast<cl_uint>(b.records),
+                               static_cast<cl_uint>(b.fields.size()), wideMask(b), cl_uint(zero_ ? 1 : 0), s.delta);
+        ocl::launch(ctx_, difference_, "team_difference", b.records);
+        q.enqueueReadBuffer(s.delta, CL_FALSE, 0, n * 16, delta_.data() + at);
+        at += n;
     }
-    const std::size_t fieldCount = delta.size();
-    delta.insert(delta.end(), extra.begin(), extra.end());
+    std::copy(extra.begin(), extra.end(), delta_.begin() + static_cast<std::ptrdiff_t>(at));
+    q.finish();
+    const auto t1 = Clock::now();
+    team_.sum(delta_);
     const auto t2 = Clock::now();
-    team_.sum(delta);
-    const auto t3 = Clock::now();
-    extra.assign(delta.begin() + static_cast<std::ptrdiff_t>(fieldCount), delta.end());
-    // before + the team's changes, back to the device
-    std::size_t d = 0;
+    extra.assign(delta_.begin() + static_cast<std::ptrdiff_t>(at), delta_.end());
+    // before + the team's sums, on the device
+    at = 0;
     for (std::size_t k = 0; k < buffers_.size(); ++k) {
-        std::vector<std::uint64_t>& a = now[k];
-        const std::uint64_t* b = zero_ ? nullptr : before_[k].data();
-        const auto was = [b](std::size_t i) { return b ? b[i] : std::uint64_t{0}; };
-        for (std::size_t i = 0; i < a.size();)
-            for (int f : buffers_[k].fields) {
-                if (f == 2) {
-                    const U128 s = add128({was(i), was(i + 1)}, delta[d++]);
-                    a[i] = s.lo;
-                    a[i + 1] = s.hi;
-                } else {
-                    a[i] = was(i) + delta[d++].lo;
-                }
-                i += static_cast<std::size_t>(f);
-            }
+        const SummedBuffer& b = buffers_[k];
+        const std::size_t n = b.records * b.fields.size();
+        if (n == 0)
+            continue;
+        Scratch& s = scratch_[k];
+        q.enqueueWriteBuffer(s.delta, CL_FALSE, 0, n * 16, delta_.data() + at);
+        ocl::setKernelArgsFrom(add_, 0, *b.buffer, s.before, s.delta, static_cast<cl_uint>(b.records),
+                               static_cast<cl_uint>(b.fields.size()), wideMask(b), cl_uint(zero_ ? 1 : 0));
+        ocl::launch(ctx_, add_, "team_add", b.records);
+        at += n;
     }
-    const auto t4 = Clock::now();
-    for (std::size_t k = 0; k < buffers_.size(); ++k)
-        if (!now[k].empty())
-            ctx_.queue().enqueueWriteBuffer(*buffers_[k].buffer, CL_TRUE, 0, now[k].size() * 8, now[k].data());
+    q.finish();
     ++reductions_;
-    bytes_ += delta.size() * sizeof(U128);
-    const double device = std::chrono::duration<double>(t1 - t0).count() + since(t4);
-    const double collective = std::chrono::duration<double>(t3 - t2).count();
+    bytes_ += delta_.size() * sizeof(U128);
+    const double collective = std::chrono::duration<double>(t2 - t1).count();
     const double all = since(t0);
     seconds_ += all;
-    deviceSeconds_ += device;
+    deviceSeconds_ += all - collective;
     collectiveSeconds_ += collective;
-    hostSeconds_ += all - device - collective;
 }
 
 nlohmann::json SharedSums::report() const
@@ -120,7 +135,6 @@ nlohmann::json SharedSums::report() const
             {"bytes_per_reduction", reductions_ ? static_cast<double>(bytes_) / static_cast<double>(reductions_) : 0.0},
             {"seconds", seconds_},
             {"device_seconds", deviceSeconds_},
-            {"host_seconds", hostSeconds_},
             {"collective_seconds", collectiveSeconds_}};
 }
 
