@@ -9,15 +9,21 @@
  * (cleared and not summed since) and `before` is not read.
  */
 
+/* Where record r's words start in the buffer, and its fields in the differences. */
+static inline void record_start(size_t r, uint fields, uint wide, size_t* word, size_t* field_word)
+{
+    *word = r * (fields + popcount(wide));
+    *field_word = 2 * r * fields;
+}
+
 __kernel void team_difference(global const ulong* now, global const ulong* before, uint records, uint fields,
                               uint wide, uint zero_before, global ulong* delta)
 {
     const size_t r = get_global_id(0);
     if (r >= records)
         return;
-    const uint words = fields + popcount(wide);
-    size_t w = r * words;
-    size_t out = 2 * r * fields;
+    size_t w, out;
+    record_start(r, fields, wide, &w, &out);
     for (uint f = 0; f < fields; ++f) {
         const ulong lo = now[w], b_lo = zero_before ? 0ul : before[w];
         if ((wide >> f) & 1u) {
@@ -40,9 +46,8 @@ __kernel void team_add(global ulong* buffer, global const ulong* before, global 
     const size_t r = get_global_id(0);
     if (r >= records)
         return;
-    const uint words = fields + popcount(wide);
-    size_t w = r * words;
-    size_t in = 2 * r * fields;
+    size_t w, in;
+    record_start(r, fields, wide, &w, &in);
     for (uint f = 0; f < fields; ++f) {
         const ulong b_lo = zero_before ? 0ul : before[w];
         const ulong lo = b_lo + sums[in];

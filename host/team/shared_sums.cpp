@@ -83,21 +83,25 @@ void SharedSums::after(std::vector<U128>& extra)
     for (const SummedBuffer& b : buffers_)
         fields += b.records * b.fields.size();
     delta_.resize(fields);
-    std::size_t at = 0;
-    for (std::size_t k = 0; k < buffers_.size(); ++k) {
-        const SummedBuffer& b = buffers_[k];
-        const std::size_t n = b.records * b.fields.size();
-        if (n == 0)
-            continue;
-        Scratch& s = scratch_[k];
+    // every buffer with fields, its scratch, its field count and where its fields start in delta_
+    const auto eachBuffer = [&](const auto& step) {
+        std::size_t at = 0;
+        for (std::size_t k = 0; k < buffers_.size(); ++k) {
+            const std::size_t n = buffers_[k].records * buffers_[k].fields.size();
+            if (n > 0)
+                step(buffers_[k], scratch_[k], n, delta_.data() + at);
+            at += n;
+        }
+        return at;
+    };
+    const std::size_t at = eachBuffer([&](const SummedBuffer& b, Scratch& s, std::size_t n, U128* out) {
         ensure(ctx_, s.delta, s.deltaBytes, n * 16, "a team's differences of a summed buffer");
         ensure(ctx_, s.before, s.beforeBytes, 16, "a team's copy of a summed buffer");  // bound when zero_
         ocl::setKernelArgsFrom(difference_, 0, *b.buffer, s.before, static_cast<cl_uint>(b.records),
                                static_cast<cl_uint>(b.fields.size()), wideMask(b), cl_uint(zero_ ? 1 : 0), s.delta);
         ocl::launch(ctx_, difference_, "team_difference", b.records);
-        q.enqueueReadBuffer(s.delta, CL_FALSE, 0, n * 16, delta_.data() + at);
-        at += n;
-    }
+        q.enqueueReadBuffer(s.delta, CL_FALSE, 0, n * 16, out);
+    });
     std::copy(extra.begin(), extra.end(), delta_.begin() + static_cast<std::ptrdiff_t>(at));
     q.finish();
     const auto t1 = Clock::now();
@@ -105,19 +109,12 @@ void SharedSums::after(std::vector<U128>& extra)
     const auto t2 = Clock::now();
     extra.assign(delta_.begin() + static_cast<std::ptrdiff_t>(at), delta_.end());
     // before + the team's sums, on the device
-    at = 0;
-    for (std::size_t k = 0; k < buffers_.size(); ++k) {
-        const SummedBuffer& b = buffers_[k];
-        const std::size_t n = b.records * b.fields.size();
-        if (n == 0)
-            continue;
-        Scratch& s = scratch_[k];
-        q.enqueueWriteBuffer(s.delta, CL_FALSE, 0, n * 16, delta_.data() + at);
+    eachBuffer([&](const SummedBuffer& b, Scratch& s, std::size_t n, const U128* sums) {
+        q.enqueueWriteBuffer(s.delta, CL_FALSE, 0, n * 16, sums);
         ocl::setKernelArgsFrom(add_, 0, *b.buffer, s.before, s.delta, static_cast<cl_uint>(b.records),
                                static_cast<cl_uint>(b.fields.size()), wideMask(b), cl_uint(zero_ ? 1 : 0));
         ocl::launch(ctx_, add_, "team_add", b.records);
-        at += n;
-    }
+    });
     q.finish();
     ++reductions_;
     bytes_ += delta_.size() * sizeof(U128);
