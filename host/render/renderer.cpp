@@ -122,7 +122,7 @@ struct Renderer::Impl {
         film.setCameraSamples(cameraSampler.counts());
         team.broadcast(deviceLabel);
         camera = cam;
-        if (!st.checkpointPath.empty() || !st.resumePath.empty())
+        if (!st.checkpointPath.empty() || !st.resumePath.empty() || team.size() > 1)
             sceneHash_ = sceneHash(s);
         dev::DevCamera devCam = makeDevCamera(cam, w, h);
         if (st.noImage)
@@ -160,6 +160,26 @@ struct Renderer::Impl {
         if (!(p.split_weight > 0.0f))
             p.split_max = 1u;  // no light emitted: nothing to split
         loop->setParams(p);
+        checkTeamAgrees();
+    }
+
+    // Every member must render the same thing (a node with another copy of the scene, a rank
+    // started with other arguments): the root's fingerprint -- scene bytes, camera, settings --
+    // against each member's own, so that a difference is an error naming it, not a hang.
+    void checkTeamAgrees()
+    {
+        if (team.size() == 1)
+            return;
+        const nlohmann::json mine = fingerprint();
+        std::string root = mine.dump();
+        team.broadcast(root);
+        const nlohmann::json theirs = nlohmann::json::parse(root);
+        for (const auto& [key, value] : mine.items())
+            if (!theirs.contains(key) || theirs[key] != value)
+                throw Error(cat("this member's render differs from rank 0's in its ", key, ": ",
+                                printable(value.dump(), 120), " here, ",
+                                printable(theirs.contains(key) ? theirs[key].dump() : "nothing", 120),
+                                " there (every rank must read the same scene and options)"));
     }
 
     bool stopping() const { return settings.stop && settings.stop->load(); }

@@ -159,6 +159,19 @@ TEST(Team, AKilledRankEndsTheJobWithAnErrorInBoundedTime)
     EXPECT_NE(slurp(dir + "/err").find("signal 9"), std::string::npos) << slurp(dir + "/err");
 }
 
+TEST(Team, RanksThatRenderDifferentThingsAreAnErrorNamingTheDifference)
+{
+    // mpirun's MPMD form starts the two ranks with other seeds: an error naming the seed, not a
+    // hang or an image of neither
+    const std::string dir = test::tempDir("team-mismatch");
+    const std::string args = "render " + kRoom + " --out " + dir + "/m.exr --paths 100000 --width 32 --no-progress";
+    const CliRun r = run(args + " --seed 2", mpirun(1) + " " + FENESTRA_BIN + " " + args + " --seed 1 : -np 1");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("fenestra: error: rank 1: this member's render differs from rank 0's in its seed"),
+              std::string::npos)
+        << r.err;
+}
+
 TEST(Team, OnlyRenderAndBatchRunUnderMpirun)
 {
     const CliRun r = run("devices", mpirun(2));
