@@ -270,27 +270,91 @@ Outcome runJob(const Job& job, ocl::Context& ctx, DeviceSceneCache& scenes, cons
 
 }  // namespace
 
+// A state file's {"jobs": {...}}, `what` naming it in an error.
+nlohmann::json readStateFile(const std::string& path, const char* what)
+{
+    nlohmann::json s = nlohmann::json::parse(slurpFile(path, what), nullptr, false);
+    if (!s.is_object() || !s.contains("jobs") || !s["jobs"].is_object())
+        throw Error(cat(printable(path), ": not a batch state file (remove it to run every job again)"));
+    return s;
+}
+
+// Under mpirun each rank records the jobs it finishes in a shard of its own beside the state
+// (JOBS.state.rankK.json), as they finish; rank 0 folds them into the state at the end. A batch
+// killed before then leaves its shards, which the next run folds in first: nothing finished is lost.
+std::string shardPath(const std::string& statePath, int rank)
+{
+    return statePath.substr(0, statePath.size() - 5) + ".rank" + std::to_string(rank) + ".json";
+}
+
+// The shards beside `statePath`, in name order.
+std::vector<std::string> shardsOf(const std::string& statePath)
+{
+    const std::filesystem::path p(statePath);
+    const std::string prefix = p.filename().string().substr(0, p.filename().string().size() - 5) + ".rank";
+    std::vector<std::string> found;
+    std::error_code ec;
+    const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.size() > prefix.size() + 5 && name.compare(0, prefix.size(), prefix) == 0 &&
+            name.compare(name.size() - 5, 5, ".json") == 0)
+            found.push_back(e.path().string());
+    }
+    std::sort(found.begin(), found.end());
+    return found;
+}
+
+// The state: the file (none: no job finished), with the shards a killed batch under mpirun left
+// folded in (a shard's null entry: the job ran again and did not finish); written back and the
+// shards removed when there were any.
+nlohmann::json readState(const std::string& statePath)
+{
+    nlohmann::json state = {{"jobs", nlohmann::json::object()}};
+    if (std::filesystem::exists(statePath))
+        state = readStateFile(statePath, "the batch's state");
+    // entries are checked where they are read (finishedEntry): one that is not what a batch
+    // writes only makes its job run
+    const std::vector<std::string> shards = shardsOf(statePath);
+    for (const std::string& shard : shards) {
+        const nlohmann::json s = readStateFile(shard, "a rank's batch state");
+        for (const auto& [name, entry] : s["jobs"].items()) {
+            if (entry.is_null())
+                state["jobs"].erase(name);
+            else
+                state["jobs"][name] = entry;
+        }
+    }
+    if (!shards.empty()) {
+        writeText(statePath, state.dump(1) + "\n");
+        std::error_code ec;  // one left behind is folded in again next time: harmless
+        for (const std::string& shard : shards)
+            std::filesystem::remove(shard, ec);
+    }
+    return state;
+}
+
 int runBatch(const BatchOptions& options)
 {
     const std::vector<Job> jobs = readJobs(options.jobsPath);
     const std::string statePath = sidePath(options.jobsPath, ".state.json");
     const std::string summaryJson = sidePath(options.jobsPath, ".summary.json");
     const std::string summaryCsv = sidePath(options.jobsPath, ".summary.csv");
-    nlohmann::json state = nlohmann::json::object();
-    if (std::filesystem::exists(statePath)) {
-        state = nlohmann::json::parse(slurpFile(statePath, "the batch's state"), nullptr, false);
-        if (!state.is_object() || !state.contains("jobs") || !state["jobs"].is_object())
-            throw Error(cat(printable(statePath), ": not a batch state file (remove it to run every job again)"));
-        // entries are checked where they are read (finishedEntry): one that is not what a batch
-        // writes only makes its job run
-    } else {
-        state["jobs"] = nlohmann::json::object();
-    }
-    const StopSignals signals;  // one for the whole batch: a stop between jobs is seen too
     // Under mpirun the ranks take the jobs as they come free (a shared ticket counter), each job
-    // on one rank's device; rank 0 then gathers the outcomes and writes the state and summaries.
+    // on one rank's device; each records what it finishes in its shard, and rank 0 gathers the
+    // outcomes at the end and writes the state and summaries.
     Team& team = processTeam();
     const bool spread = team.size() > 1;
+    nlohmann::json state;
+    if (team.root())
+        state = readState(statePath);
+    if (spread) {  // rank 0's reading, shards folded in, for everyone
+        std::string text = state.dump();
+        team.broadcast(text);
+        state = nlohmann::json::parse(text);
+    }
+    nlohmann::json shard = {{"jobs", nlohmann::json::object()}};
+    const StopSignals signals;  // one for the whole batch: a stop between jobs is seen too
     auto ctx = std::make_unique<ocl::Context>(ocl::selectDevice(options.device, team.localRank()));
     DeviceSceneCache scenes;  // a scene's BVH and buffers, kept while its jobs follow one another
     const std::string rankTag = spread ? cat(" (rank ", team.rank(), ")") : "";
@@ -352,9 +416,14 @@ int runBatch(const BatchOptions& options)
                              job.name.c_str(), printable(o.error, 4000).c_str());
             }
             keys[i] = key;
-            if (!spread) {  // spread, rank 0 writes the state once it has every rank's outcomes
+            if (!spread) {
                 recordState(state, job.name, o, key);
                 writeText(statePath, state.dump(1) + "\n");
+            } else {  // this rank's shard; rank 0 writes the state once it has every rank's outcomes
+                recordState(shard, job.name, o, key);
+                if (o.status != "done")
+                    shard["jobs"][job.name] = nullptr;  // not finished: the state must forget it
+                writeText(shardPath(statePath, team.rank()), shard.dump(1) + "\n");
             }
         }
         if (!o.json.empty() && (o.status == "done" || o.status == "skipped" || o.status == "stopped")) {
@@ -396,6 +465,9 @@ int runBatch(const BatchOptions& options)
                     recordState(state, jobs[i].name, o, e["key"]);
             }
         writeText(statePath, state.dump(1) + "\n");
+        std::error_code ec;
+        for (int k = 0; k < team.size(); ++k)  // folded in: the shards go
+            std::filesystem::remove(shardPath(statePath, k), ec);
     }
 
     // The summary: every job, run or not.

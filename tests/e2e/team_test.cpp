@@ -159,6 +159,38 @@ TEST(Team, AKilledRankEndsTheJobWithAnErrorInBoundedTime)
     EXPECT_NE(slurp(dir + "/err").find("signal 9"), std::string::npos) << slurp(dir + "/err");
 }
 
+TEST(Team, ABatchKilledUnderMpirunKeepsTheJobsItFinished)
+{
+    // Two quick jobs and a minute-long one on two ranks, every rank killed 10 s in: the quick
+    // jobs' shards survive, and a rerun skips them.
+    const std::string dir = test::tempDir("team-batch-kill");
+    const auto job = [&](const std::string& name, const std::string& budget) {
+        return "{\"name\": \"" + name + "\", \"render\": [\"" + kRoom + "\", " + budget +
+               ", \"--width\", \"32\", \"--no-progress\", \"--out\", \"" + dir + "/" + name + ".exr\"]}";
+    };
+    std::ofstream(dir + "/jobs.json") << "{\"jobs\": [" << job("a", "\"--paths\", \"100000\"") << ", "
+                                      << job("b", "\"--paths\", \"100000\"") << ", "
+                                      << job("long", "\"--time\", \"60\"") << "]}";
+    const std::string cmd = mpirun(2) + " " + FENESTRA_BIN + " batch " + dir + "/jobs.json >/dev/null 2>" + dir +
+                            "/err & pid=$!; sleep 10; pkill -KILL -f \"^" + FENESTRA_BIN + " batch " + dir +
+                            "\"; wait $pid; true";
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
+    EXPECT_FALSE(slurp(dir + "/a.exr").empty()) << slurp(dir + "/err");
+    EXPECT_FALSE(slurp(dir + "/b.exr").empty()) << slurp(dir + "/err");
+    // the rerun, as one process, without the long job's minute: the quick jobs are skipped
+    std::ofstream(dir + "/jobs.json") << "{\"jobs\": [" << job("a", "\"--paths\", \"100000\"") << ", "
+                                      << job("b", "\"--paths\", \"100000\"") << ", "
+                                      << job("long", "\"--paths\", \"1000\"") << "]}";
+    const CliRun again = run("batch " + dir + "/jobs.json");
+    ASSERT_EQ(again.status, 0) << again.err;
+    const auto summary = nlohmann::json::parse(slurp(dir + "/jobs.summary.json"));
+    EXPECT_EQ(summary["jobs"][0]["status"], "skipped");
+    EXPECT_EQ(summary["jobs"][1]["status"], "skipped");
+    EXPECT_EQ(summary["jobs"][2]["status"], "done");
+    EXPECT_TRUE(slurp(dir + "/jobs.state.rank0.json").empty());  // folded into the state
+    EXPECT_TRUE(slurp(dir + "/jobs.state.rank1.json").empty());
+}
+
 TEST(Team, RanksThatRenderDifferentThingsAreAnErrorNamingTheDifference)
 {
     // mpirun's MPMD form starts the two ranks with other seeds: an error naming the seed, not a
