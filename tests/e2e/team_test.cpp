@@ -159,6 +159,22 @@ TEST(Team, AKilledRankEndsTheJobWithAnErrorInBoundedTime)
     EXPECT_NE(slurp(dir + "/err").find("signal 9"), std::string::npos) << slurp(dir + "/err");
 }
 
+TEST(Team, ATimedRenderEndsByTheRootsClock)
+{
+    // --time: the calibration, the batch size and the end are rank 0's decisions, so every rank
+    // stops after the same batch and the job ends near the budget
+    const std::string dir = test::tempDir("team-time");
+    const auto t0 = std::chrono::steady_clock::now();
+    const CliRun r = run("render " + kRoom + " --out " + dir + "/t.exr --time 4 --width 32 --no-progress", mpirun(2));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_LT(seconds, 30.0);
+    const auto j = nlohmann::json::parse(slurp(dir + "/t.json"));
+    EXPECT_GE(j["batches"].get<int>(), 2);
+    EXPECT_EQ(j["team"]["members"], 2);
+    EXPECT_GT(j["seconds"]["calibration"].get<double>(), 0.0);
+}
+
 TEST(Team, ABatchKilledUnderMpirunKeepsTheJobsItFinished)
 {
     // Two quick jobs and a minute-long one on two ranks, every rank killed 10 s in: the quick
