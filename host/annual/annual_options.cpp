@@ -48,7 +48,7 @@ bool parsePair(const std::string& text, char sep, double* a, double* b)
 
 }  // namespace
 
-void validateAnnualOptions(AnnualOptions& o, const SkySunOptions& skySun, SensorOptions& sensors, bool hasCheckpoint)
+void validateAnnualOptions(AnnualOptions& o, const SkySunOptions& skySun, SensorOptions& sensors)
 {
     const bool tuned = o.mf || o.occupied || o.daLux || o.sdaShare || o.aseLux || o.aseHours || o.udi || o.learning;
     if (!o.weather) {
@@ -65,8 +65,6 @@ void validateAnnualOptions(AnnualOptions& o, const SkySunOptions& skySun, Sensor
                     "--sun-lux, --sky-lux, --sky-zenith and --weather");
     if (sensors.daylightFactor)
         throw Error("--annual and --daylight-factor are two studies: run them one at a time");
-    if (hasCheckpoint)
-        throw Error("--checkpoint and --resume do not carry daylight coefficients: an annual study runs in one go");
     AnnualSettings& s = o.settings;
     s.mf = o.mf.value_or(1);
     if (s.mf < 1 || s.mf > kMaxSkyPatchMF)

@@ -42,8 +42,7 @@ struct AnnualOptions {
 void addAnnualOptions(CLI::App* render, AnnualOptions* options);
 
 // Checks ranges and combinations (naming the option), fills `settings`, and for --annual sets
-// --no-image. `hasCheckpoint`: --checkpoint or --resume given.
-void validateAnnualOptions(AnnualOptions& options, const SkySunOptions& skySun, SensorOptions& sensors,
-                           bool hasCheckpoint);
+// --no-image.
+void validateAnnualOptions(AnnualOptions& options, const SkySunOptions& skySun, SensorOptions& sensors);
 
 }  // namespace fen

@@ -139,7 +139,7 @@ std::int64_t parseCount(const std::string& text, const char* option, std::int64_
 void validateRenderOptions(RenderOptions& o)
 {
     parseCheckpointEvery(o.checkpointEvery, &o);
-    validateAnnualOptions(o.annual, o.skySun, o.sensors, o.checkpointPath.has_value() || o.resumePath.has_value());
+    validateAnnualOptions(o.annual, o.skySun, o.sensors);
     validateSensorOptions(o.sensors, o.skySun);
     if (o.sensors.noImage) {
         // Nothing of the image's: a render for its sensors alone.

@@ -111,8 +111,6 @@ struct Renderer::Impl {
           cameraSampler(film.pixels(), static_cast<std::uint32_t>(st.cameraSpp),
                         st.noImage ? CameraPassMode::Fixed : st.cameraPass)
     {
-        if (st.skyPatchMF > 0 && (!st.checkpointPath.empty() || !st.resumePath.empty()))
-            throw Error("--checkpoint and --resume do not carry daylight coefficients: an annual study runs in one go");
         if (sensors.patches() && !st.skyPatchWeights.empty()) {
             if (st.skyPatchWeights.size() != sensors.patches())
                 throw Error(cat("internal error: ", st.skyPatchWeights.size(), " patch weights for ", sensors.patches(),
@@ -470,6 +468,19 @@ struct Renderer::Impl {
         return cat(settings.sensors ? settings.sensors->cells.size() : 0, ":", hash);
     }
 
+    // The patch weights as a hash of their doubles ("" with none).
+    std::string patchWeightsHash() const
+    {
+        if (settings.skyPatchWeights.empty())
+            return "";
+        Fnv f;
+        for (double v : settings.skyPatchWeights)
+            f.value(v);
+        char hash[17];
+        std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(f.h));
+        return hash;
+    }
+
     // What must be equal for a checkpoint to continue this render (render/checkpoint.h).
     nlohmann::json fingerprint() const
     {
@@ -500,6 +511,10 @@ struct Renderer::Impl {
                 {"rois", rois},
                 {"sensors", sensorFingerprint()},
                 {"no_image", settings.noImage},
+                // an annual study's coefficients: the sky's subdivision, and the year's patch
+                // weights the learning followed (hashed)
+                {"sky_patch_mf", settings.skyPatchMF},
+                {"sky_patch_weights", patchWeightsHash()},
                 {"method", methodName(e.method)},
                 {"portals", e.portals},
                 // the strategy's own settings (strategy_registry.h), after "method" so that a
@@ -522,6 +537,8 @@ struct Renderer::Impl {
         cameraSampler.save(w);
         if (sensorStats)
             sensorStats->save(w);
+        if (dcStats)
+            dcStats->save(w);
         if (strategyBytes)
             w.append(*strategyBytes);
         else
@@ -546,6 +563,11 @@ struct Renderer::Impl {
             sensorStats->load(in);
             if (sensorStats->batches() != l.done)
                 in.fail("sensors.batches", "does not match loop.done");
+        }
+        if (dcStats) {
+            dcStats->load(in);
+            if (dcStats->batches() != l.done)
+                in.fail("sensors.batches", "of the daylight coefficients does not match loop.done");
         }
         strategy->loadState(in);
         estimateImage(&stats, 0);

@@ -97,7 +97,7 @@ void SensorStatistics::load(StateReader& r)
     sum_ = r.f64s("sensors.sum", cells_, true);
     sumSq_ = r.f64s("sensors.sum_sq", cells_, true);
     batches_.clear();
-    for (std::size_t b = 0; b < batches; ++b) {
+    for (std::size_t b = 0; keepBatches_ && b < batches; ++b) {
         const std::vector<double> v = r.f64s("sensors.batch", cells_, true);
         batches_.emplace_back(v.begin(), v.end());
     }

@@ -21,8 +21,8 @@ class StateWriter;
 class SensorStatistics {
 public:
     // keepBatches false: only the weighted sums are kept (mean, stdErr), not each batch (no
-    // jackknife, no mapped(), no save): for the daylight-coefficient matrices, whose copies per
-    // batch would take 16 x cells x patches floats.
+    // jackknife, no mapped(); save() and load() keep the sums alone): for the daylight-coefficient
+    // matrices, whose copies per batch would take 16 x cells x patches floats.
     explicit SensorStatistics(std::size_t cells, bool keepBatches = true)
         : cells_(cells), keepBatches_(keepBatches), sum_(cells, 0.0), sumSq_(cells, 0.0) {}
     void add(const std::vector<double>& lux, double weight = 1.0);

@@ -767,14 +767,47 @@ TEST(CliAnnual, AYearOfTheShippedWeatherOnTheRoom)
     expectError(run("render " + scene + out + ann + " --annual-learning some"), 1, "--annual-learning 'some': expected year or unit");
     expectError(run("render " + scene + out + ann + " --sky cie:12"), 1, "--annual takes its skies from the weather file");
     expectError(run("render " + scene + out + ann + " --daylight-factor"), 1, "--annual and --daylight-factor");
-    expectError(run("render " + scene + out + ann + " --checkpoint " + dir + "/c.ckpt"), 1,
-                "do not carry daylight coefficients");
     expectError(run("render " + scene + out + " --annual " + dir + "/none.epw --work-plane floor"), 1,
                 "none.epw: cannot open the weather file");
     expectError(run("render " + scene + out + " --annual " + epw), 1, "--no-image renders sensors alone");
     // 200,000 cells x 36,866 patches: 236 GB of sums, refused before anything is computed
     expectError(run("render " + scene + out + ann + " --sensor-spacing 0.01 --sky-patches 16"), 1,
                 "--annual: the daylight coefficients of 200000 cells x 36866 sky patches need");
+}
+
+TEST(CliAnnual, AStoppedStudyResumesToTheSameCoefficients)
+{
+    // SIGTERM stops an annual study partway; --resume finishes it, and the coefficient matrices
+    // and the year's metrics are the bytes of the study never stopped. The stop comes 40 % into the
+    // uninterrupted study's render time, after its set-up (both from its JSON).
+    const std::string epw = std::string(FEN_SCENES_DIR) + "/weather/tmy_45.000_8.000_2005_2016.epw";
+    const std::string scene = std::string(FEN_SCENES_DIR) + "/room.gltf";
+    const std::string dir = test::tempDir("cli-annual-resume");
+    const std::string args = " --annual " + epw + " --work-plane floor --sensor-spacing 1 --paths 16777216 "
+                             "--batches 64 --seed 4 --no-progress";
+    const CliRun whole = run("render " + scene + " --out " + dir + "/whole" + args);
+    ASSERT_EQ(whole.status, 0) << whole.err;
+    const auto wj = nlohmann::json::parse(slurp(dir + "/whole.json"));
+    const double setup = wj["seconds"]["total"].get<double>() - wj["seconds"]["render"].get<double>();
+    const double stopAt = setup + 0.4 * wj["seconds"]["render"].get<double>();
+    char sleep[32];
+    std::snprintf(sleep, sizeof sleep, "%.2f", stopAt);
+    const std::string cmd = std::string(FENESTRA_BIN) + " render " + scene + " --out " + dir + "/r" + args +
+                            " --checkpoint " + dir + "/c.ckpt >/dev/null 2>" + dir + "/err & pid=$!; sleep " + sleep +
+                            "; kill -TERM $pid; wait $pid; echo $? >" + dir + "/status";
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
+    ASSERT_EQ(std::stoi(slurp(dir + "/status")), 130) << slurp(dir + "/err");
+    const CliRun r = run("render " + scene + " --out " + dir + "/r" + args + " --resume " + dir + "/c.ckpt");
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* file : {".dc.mtx", ".dc-direct.mtx", ".annual.csv", ".sensors.csv"})
+        EXPECT_EQ(slurp(dir + "/r" + file), slurp(dir + "/whole" + file)) << file;
+    const auto j = nlohmann::json::parse(slurp(dir + "/r.json"));
+    EXPECT_GT(j["checkpoint"]["resumed_batches"].get<int>(), 0);
+    EXPECT_LT(j["checkpoint"]["resumed_batches"].get<int>(), 64);
+    // a checkpoint of another year's weighting is refused, naming it
+    expectError(run("render " + scene + " --out " + dir + "/x" + args + " --annual-learning unit --resume " + dir +
+                    "/c.ckpt"),
+                1, "sky_patch_weights");
 }
 
 // Textures a scene cannot have: a missing file, bytes that are no image, an image too large.
