@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -123,13 +124,21 @@ TEST(Team, AnAnnualStudyWritesTheBytesOfOneProcess)
 TEST(Team, AStoppedTeamResumesWithAnotherNumberOfRanksToTheSameBytes)
 {
     // SIGTERM to every rank stops the team at the batch in flight; the root writes the
-    // checkpoint; three ranks resume it, and the image is the uninterrupted one's.
+    // checkpoint; three ranks resume it, and the image is the uninterrupted one's. The stop comes
+    // a second of MPI start-up plus a third of the way into the uninterrupted render's time, after
+    // its set-up (both from its JSON), so that it falls inside the team's render on a slow machine
+    // as on a fast one.
     const std::string dir = test::tempDir("team-resume");
     const std::string args = " --paths 8388608 --batches 64 --width 32 --seed 9 --no-progress --method adaptive";
     const CliRun whole = run("render " + kRoom + " --out " + dir + "/whole.exr" + args);
     ASSERT_EQ(whole.status, 0) << whole.err;
+    const auto wj = nlohmann::json::parse(slurp(dir + "/whole.json"));
+    const double render = wj["seconds"]["render"].get<double>();
+    const double stopAt = wj["seconds"]["total"].get<double>() - render + 1.0 + render / 3.0;
+    char sleep[32];
+    std::snprintf(sleep, sizeof sleep, "%.2f", stopAt);
     const std::string cmd = mpirun(2) + " " + FENESTRA_BIN + " render " + kRoom + " --out " + dir + "/r.exr" + args +
-                            " --checkpoint " + dir + "/c.ckpt 2>" + dir + "/err & pid=$!; sleep 4; "
+                            " --checkpoint " + dir + "/c.ckpt 2>" + dir + "/err & pid=$!; sleep " + sleep + "; "
                             "pkill -TERM -f \"^" + FENESTRA_BIN + " render .*r.exr\"; wait $pid; echo $? >" + dir + "/status";
     ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
     EXPECT_NE(std::stoi(slurp(dir + "/status")), 0) << slurp(dir + "/err");
