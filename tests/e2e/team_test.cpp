@@ -143,6 +143,11 @@ TEST(Team, AStoppedTeamResumesWithAnotherNumberOfRanksToTheSameBytes)
     ASSERT_EQ(std::system(("bash -c '" + cmd + "'").c_str()), 0);
     EXPECT_NE(std::stoi(slurp(dir + "/status")), 0) << slurp(dir + "/err");
     ASSERT_FALSE(slurp(dir + "/c.ckpt").empty()) << slurp(dir + "/err");
+    // the stopped team's outputs are whole: the image of the batches it finished
+    const auto stopped = nlohmann::json::parse(slurp(dir + "/r.json"));
+    EXPECT_TRUE(stopped["interrupted"].get<bool>());
+    EXPECT_GT(stopped["batches"].get<int>(), 0);
+    EXPECT_FALSE(slurp(dir + "/r.exr").empty());
     const CliRun r = run("render " + kRoom + " --out " + dir + "/r.exr" + args + " --resume " + dir + "/c.ckpt", mpirun(3));
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(slurp(dir + "/r.exr"), slurp(dir + "/whole.exr"));
