@@ -6,6 +6,8 @@
 #   bench_spheres.json traversal, spheres (1.09M triangles), every BVH layout, vs Embree
 #   render_bench.txt   bench --render: render rays/s over closest-hit traversal, uniform and portal
 #   sweep.txt          pool size, BVH layout and kernel mode for a render of scenes/room.gltf
+#   team.txt           two MPI ranks on the device against one process: the same image bytes (the
+#                      team's sums on NVIDIA's driver), and the reductions' seconds at 1920 px
 # Every step has its own time limit, so one that hangs or fails leaves the rest measured.
 set -u
 out=${1:?usage: gpu_measure.sh OUTDIR [DEVICE]}
@@ -51,3 +53,18 @@ PY
     run "adaptive, the default method" --method adaptive
     rm -f "$out"/sweep_tmp.*
 } > "$out/sweep.txt" 2>&1
+{
+    # Both ranks on the one device: what is checked is that the team's kernels (team_sums.cl) sum
+    # exactly on this driver, and what a reduction of a 1920 px film costs where the device is fast.
+    export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+    for m in uniform adaptive; do
+        args=(render scenes/room.gltf --device "$dev" --method "$m" --width 1920 --paths 100000000 --batches 8
+              --no-progress)
+        step 120 "$fen" "${args[@]}" --out "$out/team_one.exr" 2>&1 | tail -1
+        step 120 mpirun --oversubscribe -np 2 "$fen" "${args[@]}" --out "$out/team_two.exr" 2>&1 | tail -1
+        if cmp -s "$out/team_one.exr" "$out/team_two.exr"; then echo "== $m: same bytes"; else echo "== $m: DIFFERENT"; fi
+        python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); print("   ", j.get("team"), "render s", j["seconds"]["render"])' \
+            "$out/team_two.json"
+    done
+    rm -f "$out"/team_one.* "$out"/team_two.*
+} > "$out/team.txt" 2>&1
