@@ -126,9 +126,7 @@ std::string jobKey(const Job& job, const std::string& device, const std::vector<
         f.text(p);
         f.text(bytes);
     }
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
-    return hex;
+    return hex64(f.h);
 }
 
 // A state entry that says the job finished: {"status": "done", "key": K, "inputs": [...], "json": P}.

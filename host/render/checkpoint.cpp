@@ -76,9 +76,7 @@ std::string buildId()
             f.add(buf, static_cast<std::size_t>(exe.gcount()));
             any = true;
         }
-        char hex[17];
-        std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
-        return any ? cat("fenestra 0.1 build ", hex) : std::string("fenestra 0.1");
+        return any ? cat("fenestra 0.1 build ", hex64(f.h)) : std::string("fenestra 0.1");
     }();
     return id;
 }

@@ -463,9 +463,7 @@ struct Renderer::Impl {
                 }
                 f.value(c.side_m);
             }
-        char hash[17];
-        std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(f.h));
-        return cat(settings.sensors ? settings.sensors->cells.size() : 0, ":", hash);
+        return cat(settings.sensors ? settings.sensors->cells.size() : 0, ":", hex64(f.h));
     }
 
     // The patch weights as a hash of their doubles ("" with none).
@@ -476,9 +474,7 @@ struct Renderer::Impl {
         Fnv f;
         for (double v : settings.skyPatchWeights)
             f.value(v);
-        char hash[17];
-        std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(f.h));
-        return hash;
+        return hex64(f.h);
     }
 
     // What must be equal for a checkpoint to continue this render (render/checkpoint.h).
@@ -489,9 +485,7 @@ struct Renderer::Impl {
         nlohmann::json rois = nlohmann::json::array();
         for (const Roi& q : settings.rois)
             rois.push_back({q.x0, q.y0, q.x1, q.y1});
-        char hash[17];
-        std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sceneHash_));
-        return {{"scene", hash},
+        return {{"scene", hex64(sceneHash_)},
                 {"camera", {{"position", v3(camera.position)}, {"forward", v3(camera.forward)},
                             {"up", v3(camera.up)}, {"yfov", camera.yfovRad}}},
                 {"width", film.width()},

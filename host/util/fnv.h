@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 
 namespace fen {
@@ -31,5 +32,13 @@ struct Fnv {
         add(s.data(), s.size());
     }
 };
+
+// A 64-bit hash as fingerprints and keys write it: 16 lower-case hex digits.
+inline std::string hex64(std::uint64_t v)
+{
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(v));
+    return hex;
+}
 
 }  // namespace fen
