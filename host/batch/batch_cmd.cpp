@@ -266,8 +266,6 @@ Outcome runJob(const Job& job, ocl::Context& ctx, DeviceSceneCache& scenes, cons
     return o;
 }
 
-}  // namespace
-
 // A state file's {"jobs": {...}}, `what` naming it in an error.
 nlohmann::json readStateFile(const std::string& path, const char* what)
 {
@@ -331,6 +329,8 @@ nlohmann::json readState(const std::string& statePath)
     }
     return state;
 }
+
+}  // namespace
 
 int runBatch(const BatchOptions& options)
 {
