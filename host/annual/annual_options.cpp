@@ -23,6 +23,11 @@ void addAnnualOptions(CLI::App* r, AnnualOptions* o)
     r->add_option("--udi", o->udi, "Useful daylight illuminance band LOW,HIGH, lux (default 100,2000)");
     r->add_option("--annual-learning", o->learning,
                   "What adaptive emission learns the coefficients for: year (the year's mean sky, default) | unit");
+    r->add_option("--annual-sun", o->sun,
+                  "The sun's direct light: exact (at its own position, hour by hour: five-phase, default) | patch "
+                  "(in its sky patch: two-phase)");
+    r->add_option("--annual-sun-points", o->sunPoints,
+                  "With --annual-sun exact: N x N jittered points a cell and hour (default 2)");
 }
 
 namespace {
@@ -50,11 +55,12 @@ bool parsePair(const std::string& text, char sep, double* a, double* b)
 
 void validateAnnualOptions(AnnualOptions& o, const SkySunOptions& skySun, SensorOptions& sensors)
 {
-    const bool tuned = o.mf || o.occupied || o.daLux || o.sdaShare || o.aseLux || o.aseHours || o.udi || o.learning;
+    const bool tuned = o.mf || o.occupied || o.daLux || o.sdaShare || o.aseLux || o.aseHours || o.udi || o.learning ||
+                       o.sun || o.sunPoints;
     if (!o.weather) {
         if (tuned)
-            throw Error("--sky-patches, --occupied, --da-lux, --sda-share, --ase-lux, --ase-hours, --udi and "
-                        "--annual-learning need --annual FILE.epw");
+            throw Error("--sky-patches, --occupied, --da-lux, --sda-share, --ase-lux, --ase-hours, --udi, "
+                        "--annual-learning, --annual-sun and --annual-sun-points need --annual FILE.epw");
         return;
     }
     if (o.weather->empty())
@@ -108,6 +114,18 @@ void validateAnnualOptions(AnnualOptions& o, const SkySunOptions& skySun, Sensor
         if (*o.learning != "year" && *o.learning != "unit")
             throw Error(cat("--annual-learning '", printable(*o.learning, 40), "': expected year or unit"));
         s.learnForYear = *o.learning == "year";
+    }
+    if (o.sun) {
+        if (*o.sun != "exact" && *o.sun != "patch")
+            throw Error(cat("--annual-sun '", printable(*o.sun, 40), "': expected exact or patch"));
+        s.exactSun = *o.sun == "exact";
+    }
+    if (o.sunPoints) {
+        if (!s.exactSun)
+            throw Error("--annual-sun-points: only with --annual-sun exact (the patch sun traces no rays of its own)");
+        if (*o.sunPoints < 1 || *o.sunPoints > 16)
+            throw Error(cat("--annual-sun-points ", *o.sunPoints, ": must be 1..16 (points a side of each cell)"));
+        s.sunPoints = *o.sunPoints;
     }
     s.groundAlbedo = skySun.groundAlbedo.value_or(0.2);
     sensors.noImage = true;

@@ -10,8 +10,11 @@
 //   --annual-learning year|unit   what adaptive emission learns the coefficients for: the year's
 //                             mean sky (default), or the unit sky (coefficients to reuse with other
 //                             weather: no patch favoured)
+//   --annual-sun exact|patch  the sun's direct light at its own position hour by hour (default: the
+//                             five-phase method, annual/direct_sun.h), or in its patch (two-phase)
+//   --annual-sun-points N     exact: N x N jittered points a cell and hour (default 2)
 // An annual study renders the sensors alone under a sky of 1 cd/m^2 everywhere (the ground too) and
-// no sun; so it takes no sky, sun, weather hour or daylight-factor option, and no checkpoint.
+// no sun; so it takes no sky, sun, weather hour or daylight-factor option.
 // --ground-albedo sets the ground's reflectance in the hours' skies (default 0.2, as Radiance's
 // gendaymtx). Checked before anything is loaded.
 #pragma once
@@ -36,6 +39,8 @@ struct AnnualOptions {
     std::optional<double> daLux, sdaShare, aseLux, aseHours;
     std::optional<std::string> udi;
     std::optional<std::string> learning;
+    std::optional<std::string> sun;
+    std::optional<int> sunPoints;
     AnnualSettings settings;             // from the above (validateAnnualOptions)
 };
 

@@ -69,8 +69,8 @@ std::string radianceMatrix(const double* values, std::size_t rows, std::size_t c
 }
 
 nlohmann::json writeAnnual(const SensorSet& sensors, const SensorStatistics& coefficients, const WeatherFile& weather,
-                           const AnnualSkies& skies, const AnnualSettings& s, const AnnualPaths& paths,
-                           OutputFiles& out, std::vector<std::string>* lines)
+                           const AnnualSkies& skies, const AnnualSettings& s, DirectSun* directSun,
+                           const AnnualPaths& paths, OutputFiles& out, std::vector<std::string>* lines)
 {
     const auto t0 = std::chrono::steady_clock::now();
     const std::size_t cells = sensors.cells.size(), P = skies.patches;
@@ -81,13 +81,14 @@ nlohmann::json writeAnnual(const SensorSet& sensors, const SensorStatistics& coe
     std::vector<double> area(cells);
     for (std::size_t c = 0; c < cells; ++c)
         area[c] = sensors.cells[c].side_m * sensors.cells[c].side_m;
-    const AnnualResult res = annualStudy(D, err, area, skies, s);
+    const DirectSunSource sun = [&](std::size_t first, std::size_t count) { return directSun->cells(first, count); };
+    const AnnualResult res = annualStudy(D, err, area, skies, s, s.exactSun ? &sun : nullptr);
     const double studySeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     // The cells: as the sensors' CSV names and places them, then the metrics.
     SensorFile file = cellRows(sensors, paths.csv);
     std::string csv = "sensor,cell,x_m,y_m,z_m,nx,ny,nz,area_m2,mean_lux,mean_std_err_lux,da_pct,udi_low_pct,"
-                      "udi_useful_pct,udi_high_pct,ase_hours\n";
+                      "udi_useful_pct,udi_high_pct,ase_hours,sun_mean_lux\n";
     std::vector<double> da(cells);
     for (std::size_t c = 0; c < cells; ++c) {
         const SensorRow& r = file.rows[c];
@@ -95,7 +96,7 @@ nlohmann::json writeAnnual(const SensorSet& sensors, const SensorStatistics& coe
         da[c] = a.da_pct;
         csv += cat(sensorCsvPlace(r), ",", num(a.mean_lux), ",", num(a.meanStdErr_lux), ",",
                    num(a.da_pct), ",", num(a.udiLow_pct), ",", num(a.udiUseful_pct), ",", num(a.udiHigh_pct), ",",
-                   a.aseHours, "\n");
+                   a.aseHours, ",", num(a.sunMean_lux), "\n");
     }
     out.add(paths.csv, csv);
     FalseColorScale scale = autoScale(da, false, "% DA");
@@ -124,6 +125,10 @@ nlohmann::json writeAnnual(const SensorSet& sensors, const SensorStatistics& coe
         {"missing_hours", skies.missingHours},
         {"ground_albedo", s.groundAlbedo},
         {"learning", s.learnForYear ? "year" : "unit"},
+        {"sun", s.exactSun ? "exact" : "patch"},
+        {"sun_points", s.exactSun ? nlohmann::json(s.sunPoints) : nlohmann::json(nullptr)},
+        {"direct_sun_samples", directSun ? directSun->samples() : 0},
+        {"direct_sun_seconds", directSun ? directSun->seconds() : 0.0},
         {"thresholds",
          {{"da_lux", s.daLux},
           {"sda_share_pct", s.sdaSharePct},

@@ -80,6 +80,8 @@ AnnualSkies annualSkies(const WeatherFile& file, const AnnualSettings& s)
     out.sky.resize(n);
     out.sunPatch.assign(n, 0);
     out.sunLuminance.assign(n, 0.0);
+    out.sunDirection.assign(n, glm::dvec3(0.0, 1.0, 0.0));
+    out.sunNormal_lux.assign(n, 0.0);
     std::vector<char> fallback(n, 0);
     const auto work = [&](std::size_t first, std::size_t last) {
         for (std::size_t k = first; k < last; ++k) {
@@ -108,6 +110,8 @@ AnnualSkies annualSkies(const WeatherFile& file, const AnnualSettings& s)
             const SunInPatch inPatch = sunInPatch(patches, s.mf, sun, h.sunNormal_lux);
             out.sunPatch[k] = inPatch.patch;
             out.sunLuminance[k] = inPatch.luminance_cd_m2;
+            out.sunDirection[k] = sun;
+            out.sunNormal_lux[k] = inPatch.patch ? h.sunNormal_lux : 0.0;  // as its patch: none below the horizon
             v[inPatch.patch] += inPatch.luminance_cd_m2;
             out.sky[k] = std::move(v);
         }
@@ -138,64 +142,94 @@ std::vector<double> annualPatchWeights(const AnnualSkies& skies, int mf)
 }
 
 AnnualResult annualStudy(const std::vector<double>& coefficients, const std::vector<double>& stdErr,
-                         const std::vector<double>& area_m2, const AnnualSkies& skies, const AnnualSettings& s)
+                         const std::vector<double>& area_m2, const AnnualSkies& skies, const AnnualSettings& s,
+                         const DirectSunSource* directSun)
 {
     const std::size_t cells = area_m2.size(), P = skies.patches, hours = skies.sky.size();
-    if (coefficients.size() != 2 * cells * P || stdErr.size() != coefficients.size())
+    if (coefficients.size() != 3 * cells * P || stdErr.size() != coefficients.size())
         throw Error(cat("annual study: coefficient matrices of ", coefficients.size(), " entries for ", cells,
                         " cells and ", P, " patches"));
-    // The mean patch vector over the occupied hours (dark ones count as zero).
-    std::vector<double> meanSky(P, 0.0);
+    if (s.exactSun && !directSun)
+        throw Error("annual study: the sun apart from the sky needs its direct light");
+    // The mean patch vector over the occupied hours (dark ones count as zero), and with the sun
+    // apart, the mean of the sun's own luminance in each patch.
+    std::vector<double> meanSky(P, 0.0), meanSun(P, 0.0);
     const double occupiedHours = std::max(1, skies.occupiedHours);
-    for (const auto& v : skies.sky)
+    for (std::size_t h = 0; h < hours; ++h) {
         for (std::size_t p = 0; p < P; ++p)
-            meanSky[p] += v[p] / occupiedHours;
+            meanSky[p] += skies.sky[h][p] / occupiedHours;
+        if (s.exactSun)
+            meanSun[skies.sunPatch[h]] += skies.sunLuminance[h] / occupiedHours;
+    }
     AnnualResult res;
     res.cells.resize(cells);
     std::vector<double> noiseSq(cells, 0.0), signalSq(cells, 0.0);
-    // Cells are independent: shared between the machine's threads, each writing its own.
-    const auto work = [&](std::size_t first, std::size_t last) {
-        std::vector<double> var(P);
-        for (std::size_t c = first; c < last; ++c) {
-            const double* D = coefficients.data() + c * P;
-            const double* Dd = coefficients.data() + (cells + c) * P;
-            const double* E = stdErr.data() + c * P;
-            for (std::size_t p = 0; p < P; ++p)
-                var[p] = E[p] * E[p];
-            AnnualCell& out = res.cells[c];
-            int da = 0, low = 0, useful = 0, high = 0, ase = 0;
-            double sum = 0.0;
-            for (std::size_t h = 0; h < hours; ++h) {
-                const double* v = skies.sky[h].data();
-                double e = 0.0, n = 0.0;
-                for (std::size_t p = 0; p < P; ++p) {
-                    e += D[p] * v[p];
-                    n += var[p] * v[p] * v[p];
+    // The cells in pieces whose direct sun (hours floats a cell) fits in 64 MB; within a piece,
+    // shared between the machine's threads, each writing its own.
+    const std::size_t piece = std::max<std::size_t>(1, (std::size_t{64} << 20) / (4 * std::max<std::size_t>(hours, 1)));
+    for (std::size_t first = 0; first < cells; first += piece) {
+        const std::size_t count = std::min(piece, cells - first);
+        const std::vector<float> S = s.exactSun ? (*directSun)(first, count) : std::vector<float>();
+        if (s.exactSun && S.size() != count * hours)
+            throw Error(cat("annual study: ", S.size(), " direct-sun values for ", count, " cells x ", hours, " hours"));
+        const auto work = [&](std::size_t a, std::size_t b) {
+            std::vector<double> var(P);
+            for (std::size_t c = first + a; c < first + b; ++c) {
+                const double* D = coefficients.data() + c * P;
+                const double* Dd = coefficients.data() + (cells + c) * P;
+                const double* E = stdErr.data() + c * P;
+                const double* Ei = stdErr.data() + (2 * cells + c) * P;
+                const float* Sc = s.exactSun ? S.data() + (c - first) * hours : nullptr;
+                for (std::size_t p = 0; p < P; ++p)
+                    var[p] = E[p] * E[p];
+                AnnualCell& out = res.cells[c];
+                int da = 0, low = 0, useful = 0, high = 0, ase = 0;
+                double sum = 0.0, sunSum = 0.0;
+                for (std::size_t h = 0; h < hours; ++h) {
+                    const double* v = skies.sky[h].data();
+                    double e = 0.0, n = 0.0;
+                    for (std::size_t p = 0; p < P; ++p) {
+                        e += D[p] * v[p];
+                        n += var[p] * v[p] * v[p];
+                    }
+                    const std::size_t ps = skies.sunPatch[h];
+                    const double ls = skies.sunLuminance[h];
+                    double sun = Dd[ps] * ls;  // the sun's direct light, from its patch
+                    if (Sc) {
+                        // the sun apart: its patch's direct light out, its own in (annual_study.h)
+                        sun = Sc[h];
+                        e += sun - Dd[ps] * ls;
+                        const double sky = v[ps] - ls;
+                        n += var[ps] * (sky * sky - v[ps] * v[ps]) + Ei[ps] * Ei[ps] * ls * ls;
+                    }
+                    sum += e;
+                    sunSum += sun;
+                    noiseSq[c] += n;
+                    signalSq[c] += e * e;
+                    da += e >= s.daLux;
+                    low += e < s.udiLow_lux;
+                    useful += e >= s.udiLow_lux && e <= s.udiHigh_lux;
+                    high += e > s.udiHigh_lux;
+                    ase += (Sc || ps) && sun >= s.aseLux;
                 }
-                sum += e;
-                noiseSq[c] += n;
-                signalSq[c] += e * e;
-                da += e >= s.daLux;
-                low += e < s.udiLow_lux;
-                useful += e >= s.udiLow_lux && e <= s.udiHigh_lux;
-                high += e > s.udiHigh_lux;
-                if (skies.sunPatch[h] && Dd[skies.sunPatch[h]] * skies.sunLuminance[h] >= s.aseLux)
-                    ++ase;
+                low += skies.occupiedHours - static_cast<int>(hours);  // the dark hours
+                out.mean_lux = sum / occupiedHours;
+                out.sunMean_lux = sunSum / occupiedHours;
+                double m = 0.0;
+                for (std::size_t p = 0; p < P; ++p) {
+                    const double sky = meanSky[p] - meanSun[p];
+                    m += sky * sky * var[p] + meanSun[p] * meanSun[p] * Ei[p] * Ei[p];
+                }
+                out.meanStdErr_lux = std::sqrt(m);
+                out.da_pct = 100.0 * da / occupiedHours;
+                out.udiLow_pct = 100.0 * low / occupiedHours;
+                out.udiUseful_pct = 100.0 * useful / occupiedHours;
+                out.udiHigh_pct = 100.0 * high / occupiedHours;
+                out.aseHours = ase;
             }
-            low += skies.occupiedHours - static_cast<int>(hours);  // the dark hours
-            out.mean_lux = sum / occupiedHours;
-            double m = 0.0;
-            for (std::size_t p = 0; p < P; ++p)
-                m += meanSky[p] * meanSky[p] * var[p];
-            out.meanStdErr_lux = std::sqrt(m);
-            out.da_pct = 100.0 * da / occupiedHours;
-            out.udiLow_pct = 100.0 * low / occupiedHours;
-            out.udiUseful_pct = 100.0 * useful / occupiedHours;
-            out.udiHigh_pct = 100.0 * high / occupiedHours;
-            out.aseHours = ase;
-        }
-    };
-    inShares(cells, work);
+        };
+        inShares(count, work);
+    }
     double area = 0.0, sdaArea = 0.0, aseArea = 0.0, noise = 0.0, signal = 0.0;
     for (std::size_t c = 0; c < cells; ++c) {
         const AnnualCell& cell = res.cells[c];

@@ -12,19 +12,33 @@
 // too) takes a uniform sky of the same diffuse illuminance instead, and an hour whose record lacks
 // the irradiance is dark; both are counted and reported.
 //   E_s(h)      = sum_p D[s][p] L_p(h)                 all light, every bounce
-//   E_sun,s(h)  = D_direct[s][p_sun] L_sun(h)          the sun's light that met no diffuse surface
+//   E_sun,s(h)  = D_direct[s][p_sun] L_sun(h)          the sun's light straight through nothing but glass
+// With the sun apart from the sky (`exactSun`, the default: the five-phase method), the sun's
+// direct light is not taken from its patch but computed at its own position, hour by hour
+// (annual/direct_sun.h, S[s][h]); its patch keeps only what the sun gives after a bounce:
+//   E_s(h)      = sum_p D[s][p] L_p(h) - D_direct[s][p_sun] L_sun(h) + S[s][h]
+//               = sum_{p != p_sun} D[s][p] L_p(h) + D[s][p_sun] (L_p_sun(h) - L_sun(h))
+//                 + D_indirect[s][p_sun] L_sun(h) + S[s][h]
+//   E_sun,s(h)  = S[s][h]
 //   DA          = share of occupied hours with E >= daLux              (per cell, %)
 //   sDA         = share of the sensors' area with DA >= sdaShare       (%)
 //   ASE         = share of the area with E_sun >= aseLux for more than aseHours occupied hours (%)
 //   UDI         = shares of occupied hours below udiLow, within [udiLow, udiHigh], above udiHigh
 // Noise: the coefficients' own standard errors (their batches) give each cell's mean illuminance
 // over the occupied hours a standard error, sqrt(sum_p (mean_h L_p)^2 var D[s][p]) (the same
-// coefficients serve every hour), and the hours' illuminance a relative RMS noise.
+// coefficients serve every hour), and the hours' illuminance a relative RMS noise. With the sun
+// apart, the second line's form: the sun's patch weighs D by its sky alone and D_indirect by the
+// sun (their covariance is left out, as the patches' are: it is weighted by the patch's sky
+// luminance, thousands of times below the sun's). S's own quadrature error is not counted: it is
+// independent from hour to hour and small beside the coefficients' (docs/annual.md).
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "io/weather_file.h"
 
@@ -38,6 +52,8 @@ struct AnnualSettings {
     double aseLux = 1000.0, aseHours = 250.0;
     double udiLow_lux = 100.0, udiHigh_lux = 2000.0;
     bool learnForYear = true;  // adaptive emission learns for the year's mean sky (annualPatchWeights)
+    bool exactSun = true;      // the sun's direct light at its own position (direct_sun.h), not its patch's
+    int sunPoints = 2;         // ... from sunPoints x sunPoints jittered points a cell and hour
 };
 
 // The occupied hours' skies as patch vectors.
@@ -46,6 +62,8 @@ struct AnnualSkies {
     std::vector<std::vector<double>> sky;  // per daylit occupied hour: patch luminances (sun included)
     std::vector<std::size_t> sunPatch;     // ... the sun's patch (0: no sun)
     std::vector<double> sunLuminance;      // ... and the luminance the sun adds to it (cd/m^2)
+    std::vector<glm::dvec3> sunDirection;  // ... the direction towards the sun (unit; y up, -z north)
+    std::vector<double> sunNormal_lux;     // ... and its direct normal illuminance
     std::vector<std::string> hourLabel;    // ... "MM-DD:HH"
     int occupiedHours = 0;   // all, dark ones included: the metrics' denominator
     int darkHours = 0;       // the sun down (or no diffuse light) at the middle of the hour
@@ -65,6 +83,7 @@ struct AnnualCell {
     double da_pct = 0.0;
     double udiLow_pct = 0.0, udiUseful_pct = 0.0, udiHigh_pct = 0.0;
     int aseHours = 0;                             // occupied hours of direct sun >= aseLux
+    double sunMean_lux = 0.0;                     // the direct sun's mean over the occupied hours
 };
 
 struct AnnualResult {
@@ -74,9 +93,15 @@ struct AnnualResult {
     double hourlyNoise_rel = 0.0;  // RMS over cells and daylit hours of sd(E) over the RMS of E
 };
 
-// `coefficients`, `stdErr`: the two matrices (all light, then direct), each cells x patches
-// row-major (DeviceSensors::readMatrices); `area_m2` per cell.
+// The sun's direct illuminance S at cells [first, first + count) for every daylit hour of
+// AnnualSkies, cell-major (lux): annual/direct_sun.h.
+using DirectSunSource = std::function<std::vector<float>(std::size_t first, std::size_t count)>;
+
+// `coefficients`, `stdErr`: the three matrices (all light, direct, indirect), each cells x patches
+// row-major (DeviceSensors::readMatrices); `area_m2` per cell; `directSun` with s.exactSun (else
+// null). Asks directSun for the cells in pieces of at most 64 MB.
 AnnualResult annualStudy(const std::vector<double>& coefficients, const std::vector<double>& stdErr,
-                         const std::vector<double>& area_m2, const AnnualSkies& skies, const AnnualSettings& s);
+                         const std::vector<double>& area_m2, const AnnualSkies& skies, const AnnualSettings& s,
+                         const DirectSunSource* directSun = nullptr);
 
 }  // namespace fen

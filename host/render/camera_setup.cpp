@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "util/error.h"
+#include "util/float4.h"
 
 namespace fen {
 
@@ -33,14 +34,10 @@ dev::DevCamera makeDevCamera(const CameraSpec& cam, int width, int height)
     const double tanY = std::tan(0.5 * cam.yfovRad);
     const double tanX = tanY * width / height;
     const double pixelArea = (2.0 * tanX / width) * (2.0 * tanY / height);
-    auto f4 = [](const glm::dvec3& v, double w) {
-        return dev::fen_float4{static_cast<float>(v.x), static_cast<float>(v.y),
-                               static_cast<float>(v.z), static_cast<float>(w)};
-    };
-    c.position = f4(cam.position, 0.0);
-    c.forward = f4(cam.forward, tanX);
-    c.right = f4(cam.right, tanY);
-    c.up = f4(cam.up, pixelArea);
+    c.position = toFloat4(cam.position, 0.0);
+    c.forward = toFloat4(cam.forward, tanX);
+    c.right = toFloat4(cam.right, tanY);
+    c.up = toFloat4(cam.up, pixelArea);
     c.width = static_cast<std::uint32_t>(width);
     c.height = static_cast<std::uint32_t>(height);
     return c;

@@ -28,6 +28,7 @@
 #include "io/output_files.h"
 #include "io/path_checks.h"
 #include "render/checkpoint.h"
+#include "render/device_scene.h"
 #include "io/png_preview.h"
 #include "render/camera_setup.h"
 #include "render/image_stats.h"
@@ -296,12 +297,13 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     }
     if (opt.annual.weather) {
         // The daylight coefficients: two cells x patches matrices of 128-bit sums on the device
-        // (one buffer with the cells'); on the host each batch's read-back (16 + 8 bytes an entry)
-        // and the weighted sums, mean and standard error (8 bytes each).
+        // (one buffer with the cells'); on the host each batch's read-back (16 bytes an entry of
+        // those two) as three matrices (all, direct, indirect: 8 bytes an entry each), and their
+        // weighted sums, mean and standard error (8 bytes each).
         const std::uint64_t entries = 2ull * sensors.cells.size() * skyPatchCount(opt.annual.settings.mf);
         MemoryNeeds m;
         m.deviceBytes = m.largestBufferBytes = (entries + sensors.cells.size()) * 16;
-        m.hostBytes = entries * (24 + 4 * 8);
+        m.hostBytes = entries * 16 + entries / 2 * 3 * (8 + 4 * 8);
         checkMemoryNeeds(m, ctx.info(), cat("--annual: the daylight coefficients of ", sensors.cells.size(), " cells x ",
                                             skyPatchCount(opt.annual.settings.mf), " sky patches"),
                          "use a smaller --sky-patches, or fewer sensor cells");
@@ -338,7 +340,11 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     settings.resumePath = resumePath;
     settings.checkpointSeconds = opt.checkpointSeconds;
     settings.checkpointBatches = opt.checkpointBatches;
-    settings.sceneCache = hooks.sceneCache;
+    // The sun apart from the sky traces the render's scene again after it (annual/direct_sun.h):
+    // a cache of this render's own keeps the device scene for it, where the caller keeps none.
+    DeviceSceneCache ownSceneCache;
+    const bool exactSun = opt.annual.weather && opt.annual.settings.exactSun;
+    settings.sceneCache = hooks.sceneCache ? hooks.sceneCache : exactSun ? &ownSceneCache : nullptr;
     // Error against time, batch by batch (what `scripts/compare.py` charts): the ROI's mean, the
     // noise estimate, and with a reference the RMSE and the mean's bias.
     nlohmann::json progress = nlohmann::json::array();
@@ -434,9 +440,19 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     }
     nlohmann::json annualJson = nullptr;
     std::vector<std::string> annualLines;
-    if (annualOut && r.daylightCoefficients)
+    if (annualOut && r.daylightCoefficients) {
+        std::optional<DirectSun> directSun;
+        std::shared_ptr<const DeviceScene> sunScene;
+        if (exactSun) {
+            bool reused = false;
+            sunScene = settings.sceneCache->get(ctx, scene, r.bvhWidth, &reused);
+            directSun.emplace(ctx, *sunScene, sensors, annualSkyVectors->sunDirection, annualSkyVectors->sunNormal_lux,
+                              opt.annual.settings.sunPoints, settings.seed);
+        }
         annualJson = writeAnnual(sensors, *r.daylightCoefficients, *annualWeather, *annualSkyVectors,
-                                 opt.annual.settings, *annualOut, outputs, &annualLines);
+                                 opt.annual.settings, directSun ? &*directSun : nullptr, *annualOut, outputs,
+                                 &annualLines);
+    }
     if (opt.sensors.falseColor) {
         // the image's luminance in false colour, on a log scale of whole decades
         std::vector<double> y(r.image.pixels());

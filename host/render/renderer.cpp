@@ -591,7 +591,7 @@ struct Renderer::Impl {
         if (sensors.any())
             sensorStats.emplace(sensors.cells());
         if (sensors.patches())
-            dcStats.emplace(2 * sensors.cells() * sensors.patches(), false);
+            dcStats.emplace(3 * sensors.cells() * sensors.patches(), false);
         LoopState l;
 
         start = lastProgress = Clock::now();

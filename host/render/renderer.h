@@ -147,8 +147,8 @@ struct RenderResult {
     // variance. roiBatchMeans are of the light-traced part.
     std::vector<std::pair<double, double>> roiCamera;
     std::optional<SensorStatistics> sensors;  // with sensors: each cell's illuminance over the batches
-    // With skyPatchMF: the two daylight-coefficient matrices (DeviceSensors::readMatrices) over the
-    // batches, as one vector of 2 x cells x patches.
+    // With skyPatchMF: the three daylight-coefficient matrices (DeviceSensors::readMatrices: all
+    // light, direct, indirect) over the batches, as one vector of 3 x cells x patches.
     std::optional<SensorStatistics> daylightCoefficients;
     // The camera pass: its mode, samples, the share of the render's device time it took and its
     // predicted share of the image's variance (render_cmd.cpp writes it as JSON camera_pass).

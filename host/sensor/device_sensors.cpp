@@ -8,17 +8,9 @@
 
 #include "util/error.h"
 #include "util/fixed_point.h"
+#include "util/float4.h"
 
 namespace fen {
-
-namespace {
-
-dev::fen_float4 f4(const glm::dvec3& v, double w)
-{
-    return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), static_cast<float>(w)};
-}
-
-}  // namespace
 
 SensorTables makeSensorTables(const SensorSet& set, float fixedScale)
 {
@@ -63,10 +55,10 @@ SensorTables makeSensorTables(const SensorSet& set, float fixedScale)
         const std::uint32_t rows = static_cast<std::uint32_t>(count(bucket, vhi - vlo));
         const glm::dvec3 corner = p0 + ulo * u + vlo * v;
         dev::DevSensorPlane pl{};
-        pl.origin = f4(corner, d);
-        pl.normal = f4(n, 1.0 / bucket);
-        pl.u_axis = f4(u, 0.0);
-        pl.v_axis = f4(v, 0.0);
+        pl.origin = toFloat4(corner, d);
+        pl.normal = toFloat4(n, 1.0 / bucket);
+        pl.u_axis = toFloat4(u, 0.0);
+        pl.v_axis = toFloat4(v, 0.0);
         pl.bucket_first = static_cast<std::uint32_t>(t.bucketStart.size());
         pl.cols = cols;
         pl.rows = rows;
@@ -165,21 +157,25 @@ std::vector<double> DeviceSensors::read(std::uint64_t paths)
     return lux;
 }
 
-}  // namespace fen
-
-namespace fen {
-
 std::vector<double> DeviceSensors::readMatrices(std::uint64_t paths)
 {
-    const std::size_t n = 2 * cells_ * patches_;
-    std::vector<double> m(n, 0.0);
-    if (n == 0)
+    const std::size_t block = cells_ * patches_;
+    std::vector<double> m(3 * block, 0.0);
+    if (block == 0)
         return m;
-    std::vector<std::uint64_t> acc(2 * n);
+    std::vector<std::uint64_t> acc(4 * block);
     ctx_.queue().enqueueReadBuffer(accum_, CL_TRUE, cells_ * 16, acc.size() * 8, acc.data());
     const double toLux = 1.0 / (static_cast<double>(fixedScale_) * static_cast<double>(std::max<std::uint64_t>(paths, 1)));
-    for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t k = 0; k < 2 * block; ++k)
         m[k] = fixed128(acc.data() + 2 * k) * toLux;
+    // the indirect light: all light less the direct, in the integers (every direct crossing was
+    // also added to all light, so the difference is exact and never negative)
+    for (std::size_t k = 0; k < block; ++k) {
+        const std::uint64_t* all = acc.data() + 2 * k;
+        const std::uint64_t* direct = acc.data() + 2 * (block + k);
+        const std::uint64_t d[2] = {all[0] - direct[0], all[1] - direct[1] - (all[0] < direct[0] ? 1u : 0u)};
+        m[2 * block + k] = fixed128(d) * toLux;
+    }
     return m;
 }
 

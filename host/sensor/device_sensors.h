@@ -62,9 +62,10 @@ public:
     void clear();
     // Each cell's illuminance over `paths` paths (lux): accumulators / (scale x paths).
     std::vector<double> read(std::uint64_t paths);
-    // The two daylight-coefficient matrices over `paths` paths, each cells x patches row-major,
-    // all light then the direct light: lux per path-luminance unit, so sr for a sky of unit
-    // luminance (empty without them).
+    // The daylight-coefficient matrices over `paths` paths, each cells x patches row-major: all
+    // light, the direct light (straight from the sky through nothing but glass), and the rest (all
+    // less direct, subtracted exactly in the integers: the five-phase method's indirect sun); lux
+    // per path-luminance unit, so sr for a sky of unit luminance (empty without them).
     std::vector<double> readMatrices(std::uint64_t paths);
 
 private:

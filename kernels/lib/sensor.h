@@ -13,8 +13,10 @@
  * Overflows of the 128-bit range are counted (FEN_CTR_OVERFLOWS) and must stay zero.
  * With daylight coefficients (info->patches > 0: shared/fen_sensor.h), a crossing also goes to its
  * cell's entry for the sky patch its path started from (the path's flags: lib/sky_patch.h), and,
- * if no diffuse surface has scattered the path yet (FEN_PATH_BRANCHED unset: it came from the sky
- * through nothing but glass), to the direct-light matrix -- what annual sunlight exposure counts.
+ * if it came straight from the sky through nothing but glass (no diffuse surface has scattered it,
+ * FEN_PATH_BRANCHED, and no glass has reflected it, FEN_PATH_REFLECTED), to the direct-light
+ * matrix -- what annual sunlight exposure counts, and what the direct-sun pass (direct_sun.cl)
+ * computes exactly for the sun.
  * Built with -DFEN_SENSOR_STATS (a learning strategy in a render with no image), each crossing's
  * illuminance over pi -- a luminance, the unit the pixels' statistics are kept in -- also goes to
  * the emission cell the path started in (lib/accumulate.h cell_stats_add), so that the strategy
@@ -60,7 +62,7 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
     const uint cells = s->info->cells, patches = s->info->patches;
     const uint patch = path_flags >> FEN_PATH_PATCH_SHIFT;
     const int tagged = patches && patch < patches; /* always, when the emitter tagged for these sums */
-    const int direct = !(path_flags & FEN_PATH_BRANCHED);
+    const int direct = !(path_flags & (FEN_PATH_BRANCHED | FEN_PATH_REFLECTED));
     for (uint k = 0; k < planes; ++k) {
         const global DevSensorPlane* pl = s->planes + k;
         const float3 n = pl->normal.xyz;

@@ -176,6 +176,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
         const float cos_i = dot(dir, ng);
         if (u.x < fresnel_dielectric(cos_i, m->transmission.w)) {
             next = dir - 2.0f * cos_i * ng;
+            p->flags |= FEN_PATH_REFLECTED;
         } else {
             next = dir;
             p->beta.xyz *= m->transmission.xyz;

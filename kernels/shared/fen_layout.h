@@ -13,6 +13,7 @@
 #include "shared/fen_guide.h"
 #include "shared/fen_render.h"
 #include "shared/fen_sensor.h"
+#include "shared/fen_sun.h"
 
 #define FEN_SHARED_LAYOUT(X) \
     X(Ray, org_tmin)         \
@@ -68,6 +69,9 @@
     X(PortalFrame, normal)   \
     X(PortalFrame, triangles) \
     X(AdaptiveParams, cell_alias_shift) \
-    X(AdaptiveParams, portal_base)
+    X(AdaptiveParams, portal_base) \
+    X(DevSunCell, normal)    \
+    X(DevSunHour, dir)       \
+    X(DevSunParams, cos_radius)
 
 #endif /* FEN_LAYOUT_H */

@@ -23,6 +23,7 @@
 #define FEN_PATH_ALIVE 1u
 #define FEN_PATH_SPLIT 2u     /* branches of a split wait in the path's SplitState (lib/shade_path.h) */
 #define FEN_PATH_BRANCHED 4u  /* past its first diffuse vertex: a path splits there or never */
+#define FEN_PATH_REFLECTED 8u /* reflected by glass: no longer straight from the sky (lib/sensor.h's direct light) */
 /* Bits from FEN_PATH_PATCH_SHIFT up: the sky patch the path started from, in a daylight-coefficient
    run (lib/sky_patch.h; set at emission, kept by every later step, which only sets and clears the
    bits below) */

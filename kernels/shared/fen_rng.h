@@ -25,14 +25,16 @@
 #define FEN_RNG_EMIT_PORTAL 4u  /* portal triangle (32 bits), point on it, overlap rejection */
 #define FEN_RNG_GUIDE 5u        /* first-bounce guide: box (32 bits), point in it (2 x 32) */
 #define FEN_RNG_PICK_LATTICE 6u /* host: each run's table-pick lattice offset (render/renderer.cpp) */
+#define FEN_RNG_DIRECT_SUN 7u   /* direct-sun pass: a point in the cell's stratum, a point on the sun's disc */
 
 /* The stream word of a key (its second 32 bits, beside the seed): which family of counters. Also
    one list: light paths (lib/rng.h rng_path_bits), camera samples (rng_camera), and the host's
-   pick-lattice offsets (render/renderer.cpp). The kernel test probes draw from streams of their
+   pick-lattice offsets (render/renderer.cpp), and the annual study's direct-sun pass (direct_sun.cl). The kernel test probes draw from streams of their
    own, outside a render. */
 #define FEN_RNG_STREAM_PATH 0x6a09e667u
 #define FEN_RNG_STREAM_CAMERA 0x3c6ef372u
 #define FEN_RNG_STREAM_PICK_LATTICE 0x1a771ceu
+#define FEN_RNG_STREAM_DIRECT_SUN 0x510e527fu
 
 FEN_NS_BEGIN
 

@@ -757,6 +757,26 @@ TEST(CliAnnual, AYearOfTheShippedWeatherOnTheRoom)
         EXPECT_NE(mtx.find("NROWS=" + std::to_string(cells) + "\nNCOLS=146\nNCOMP=3\nFORMAT=ascii\n\n"), std::string::npos) << m;
     }
     EXPECT_FALSE(slurp(dir + "/a.annual.png").empty());
+    // The sun apart from the sky by default (five-phase); in its patch (two-phase) on request: the
+    // same render, so the same coefficients, and the year's metrics from the other sun.
+    EXPECT_EQ(a["sun"], "exact");
+    EXPECT_EQ(a["sun_points"], 2);
+    // 2 x 2 a cell for every daylit hour with direct sun (most of them)
+    const auto samples = a["direct_sun_samples"].get<std::uint64_t>();
+    EXPECT_EQ(samples % (4 * cells), 0u);
+    EXPECT_GT(samples, 4 * cells * a["daylit_hours"].get<std::uint64_t>() / 2);
+    EXPECT_LE(samples, 4 * cells * a["daylit_hours"].get<std::uint64_t>());
+    EXPECT_NE(csv.find(",ase_hours,sun_mean_lux\n"), std::string::npos);
+    const CliRun p = run("render " + scene + " --out " + dir + "/p --annual " + epw +
+                         " --work-plane floor --sensor-spacing 0.5 --paths 2000000 --no-progress --annual-sun patch");
+    ASSERT_EQ(p.status, 0) << p.err;
+    const auto pa = nlohmann::json::parse(slurp(dir + "/p.json"))["annual"];
+    EXPECT_EQ(pa["sun"], "patch");
+    EXPECT_TRUE(pa["sun_points"].is_null());
+    EXPECT_EQ(pa["direct_sun_samples"], 0);
+    for (const char* m : {".dc.mtx", ".dc-direct.mtx"})
+        EXPECT_EQ(slurp(dir + "/p" + m), slurp(dir + "/a" + m)) << m;
+    EXPECT_NEAR(pa["mean_lux"].get<double>(), a["mean_lux"].get<double>(), 0.05 * a["mean_lux"].get<double>());
     const std::string out = " --out " + dir + "/x --paths 1000 --no-progress";
     const std::string ann = " --annual " + epw + " --work-plane floor";
     expectError(run("render " + scene + out + " --sky-patches 2"), 1, "need --annual FILE.epw");
@@ -765,6 +785,10 @@ TEST(CliAnnual, AYearOfTheShippedWeatherOnTheRoom)
     expectError(run("render " + scene + out + ann + " --udi 2000,100"), 1, "--udi '2000,100': expected LOW,HIGH");
     expectError(run("render " + scene + out + ann + " --da-lux -3"), 1, "--da-lux -3: must be an illuminance");
     expectError(run("render " + scene + out + ann + " --annual-learning some"), 1, "--annual-learning 'some': expected year or unit");
+    expectError(run("render " + scene + out + ann + " --annual-sun fixed"), 1, "--annual-sun 'fixed': expected exact or patch");
+    expectError(run("render " + scene + out + ann + " --annual-sun patch --annual-sun-points 4"), 1,
+                "--annual-sun-points: only with --annual-sun exact");
+    expectError(run("render " + scene + out + ann + " --annual-sun-points 0"), 1, "--annual-sun-points 0: must be 1..16");
     expectError(run("render " + scene + out + ann + " --sky cie:12"), 1, "--annual takes its skies from the weather file");
     expectError(run("render " + scene + out + ann + " --daylight-factor"), 1, "--annual and --daylight-factor");
     expectError(run("render " + scene + out + " --annual " + dir + "/none.epw --work-plane floor"), 1,

@@ -180,12 +180,14 @@ TEST(AnnualStudy, MetricsOfKnownMatrices)
         skies.sunLuminance.push_back(h >= 8 ? 2000.0 : 0.0);
         skies.hourLabel.push_back("h");
     }
-    std::vector<double> D(2 * cells * P, 0.0), se(D.size(), 0.0);
+    std::vector<double> D(3 * cells * P, 0.0), se(D.size(), 0.0);
     D[0 * P + cap] = 1.0;
     D[1 * P + cap] = 0.5;
     D[(cells + 0) * P + cap] = 1.0;
+    D[(2 * cells + 1) * P + cap] = 0.5;
     se[0 * P + cap] = 0.01;
     AnnualSettings s;
+    s.exactSun = false;  // the sun in its patch: the direct matrix's column
     s.aseHours = 2.0;  // 3 hours of sun over 1000 lux at cell 0: more than 2
     const AnnualResult r = annualStudy(D, se, {1.0, 3.0}, skies, s);
     ASSERT_EQ(r.cells.size(), 2u);
@@ -208,6 +210,41 @@ TEST(AnnualStudy, MetricsOfKnownMatrices)
     EXPECT_NEAR(r.ase_pct, 25.0, 1e-12);
     EXPECT_NEAR(r.meanDa_pct, (100.0 * 8 / 12 + 3 * 100.0 * 5 / 12) / 4, 1e-12);
     EXPECT_THROW(annualStudy(std::vector<double>(3), std::vector<double>(3), {1.0}, skies, s), Error);
+    s.exactSun = true;
+    EXPECT_THROW(annualStudy(D, se, {1.0, 3.0}, skies, s), Error);  // no direct sun given
+
+    // The sun apart (five-phase): cell 0's patch column is 0.6 direct and 0.4 indirect, and the
+    // pass gives it 1500 lux of direct sun in the sunny hours, cell 1 none (its column is all
+    // indirect). E = D v - D_direct L_sun + S.
+    D[(cells + 0) * P + cap] = 0.6;
+    D[(2 * cells + 0) * P + cap] = 0.4;
+    se[(2 * cells + 0) * P + cap] = 0.02;
+    std::vector<std::size_t> asked;
+    const DirectSunSource sun = [&](std::size_t first, std::size_t count) {
+        asked.push_back(count);
+        std::vector<float> S(count * 10, 0.0f);
+        for (std::size_t c = first; c < first + count; ++c)
+            for (int h = 8; h <= 10; ++h)
+                S[(c - first) * 10 + (h - 1)] = c == 0 ? 1500.0f : 0.0f;
+        return S;
+    };
+    s.aseHours = 2.0;
+    const AnnualResult x = annualStudy(D, se, {1.0, 3.0}, skies, s, &sun);
+    EXPECT_EQ(asked, std::vector<std::size_t>{2});  // both cells in one piece
+    // cell 0: 100..700, then 100 h + 2000 - 1200 + 1500 lux
+    EXPECT_NEAR(x.cells[0].mean_lux, (100.0 * 55 + 3 * 2300.0) / 12, 1e-9);
+    EXPECT_EQ(x.cells[0].aseHours, 3);
+    EXPECT_NEAR(x.cells[0].sunMean_lux, 3 * 1500.0 / 12, 1e-9);
+    EXPECT_NEAR(x.cells[0].da_pct, 100.0 * 8 / 12, 1e-12);
+    // cell 1: 0.5 of the sky, its sun's light all indirect: as before
+    EXPECT_NEAR(x.cells[1].mean_lux, 0.5 * mean0, 1e-9);
+    EXPECT_EQ(x.cells[1].aseHours, 0);
+    EXPECT_EQ(x.cells[1].sunMean_lux, 0.0);
+    // the yearly mean's standard error: the sun's patch weighs D by its sky, D_indirect by the sun
+    const double meanSky = mean0, meanSun = 6000.0 / 12;
+    EXPECT_NEAR(x.cells[0].meanStdErr_lux,
+                std::sqrt((meanSky - meanSun) * (meanSky - meanSun) * 1e-4 + meanSun * meanSun * 4e-4), 1e-9);
+    EXPECT_NEAR(x.ase_pct, 25.0, 1e-12);
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ using test::rect;
 
 struct Coefficients {
     RenderResult r;
-    std::vector<double> D, se;  // 2 x cells x patches
+    std::vector<double> D, se;  // 3 x cells x patches: all light, direct, indirect
     std::size_t cells = 0, patches = 0;
 };
 
@@ -55,7 +55,7 @@ Coefficients renderCoefficients(ocl::Context& ctx, Scene scene, const SensorSet&
         c.D = c.r.daylightCoefficients->mean();
         c.se = c.r.daylightCoefficients->stdErr();
     }
-    EXPECT_EQ(c.D.size(), 2 * c.cells * c.patches);
+    EXPECT_EQ(c.D.size(), 3 * c.cells * c.patches);
     EXPECT_EQ(c.r.counts.badContributions, 0u);
     EXPECT_EQ(c.r.counts.overflows, 0u);
     return c;
