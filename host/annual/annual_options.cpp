@@ -27,7 +27,7 @@ void addAnnualOptions(CLI::App* r, AnnualOptions* o)
                   "The sun's direct light: exact (at its own position, hour by hour: five-phase, default) | patch "
                   "(in its sky patch: two-phase)");
     r->add_option("--annual-sun-points", o->sunPoints,
-                  "With --annual-sun exact: N x N jittered points a cell and hour (default 2)");
+                  "With --annual-sun exact: N x N jittered points a cell and hour (default 4)");
 }
 
 namespace {

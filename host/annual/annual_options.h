@@ -12,7 +12,7 @@
 //                             weather: no patch favoured)
 //   --annual-sun exact|patch  the sun's direct light at its own position hour by hour (default: the
 //                             five-phase method, annual/direct_sun.h), or in its patch (two-phase)
-//   --annual-sun-points N     exact: N x N jittered points a cell and hour (default 2)
+//   --annual-sun-points N     exact: N x N jittered points a cell and hour (default 4)
 // An annual study renders the sensors alone under a sky of 1 cd/m^2 everywhere (the ground too) and
 // no sun; so it takes no sky, sun, weather hour or daylight-factor option.
 // --ground-albedo sets the ground's reflectance in the hours' skies (default 0.2, as Radiance's

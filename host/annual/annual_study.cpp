@@ -178,7 +178,14 @@ AnnualResult annualStudy(const std::vector<double>& coefficients, const std::vec
                 const double* D = coefficients.data() + c * P;
                 const double* Dd = coefficients.data() + (cells + c) * P;
                 const double* E = stdErr.data() + c * P;
+                const double* Ed = stdErr.data() + (cells + c) * P;
                 const double* Ei = stdErr.data() + (2 * cells + c) * P;
+                // var(D), var(D_indirect), and their covariance from the batches: D = D_direct +
+                // D_indirect, so cov(D, D_indirect) = (var D - var D_direct + var D_indirect) / 2
+                const auto sunPatchVar = [&](std::size_t p, double sky, double sun) {
+                    const double vd = E[p] * E[p], vdd = Ed[p] * Ed[p], vi = Ei[p] * Ei[p];
+                    return sky * sky * vd + sun * sun * vi + sky * sun * (vd - vdd + vi);
+                };
                 const float* Sc = s.exactSun ? S.data() + (c - first) * hours : nullptr;
                 for (std::size_t p = 0; p < P; ++p)
                     var[p] = E[p] * E[p];
@@ -199,8 +206,7 @@ AnnualResult annualStudy(const std::vector<double>& coefficients, const std::vec
                         // the sun apart: its patch's direct light out, its own in (annual_study.h)
                         sun = Sc[h];
                         e += sun - Dd[ps] * ls;
-                        const double sky = v[ps] - ls;
-                        n += var[ps] * (sky * sky - v[ps] * v[ps]) + Ei[ps] * Ei[ps] * ls * ls;
+                        n += sunPatchVar(ps, v[ps] - ls, ls) - var[ps] * v[ps] * v[ps];
                     }
                     sum += e;
                     sunSum += sun;
@@ -216,10 +222,8 @@ AnnualResult annualStudy(const std::vector<double>& coefficients, const std::vec
                 out.mean_lux = sum / occupiedHours;
                 out.sunMean_lux = sunSum / occupiedHours;
                 double m = 0.0;
-                for (std::size_t p = 0; p < P; ++p) {
-                    const double sky = meanSky[p] - meanSun[p];
-                    m += sky * sky * var[p] + meanSun[p] * meanSun[p] * Ei[p] * Ei[p];
-                }
+                for (std::size_t p = 0; p < P; ++p)
+                    m += sunPatchVar(p, meanSky[p] - meanSun[p], meanSun[p]);
                 out.meanStdErr_lux = std::sqrt(m);
                 out.da_pct = 100.0 * da / occupiedHours;
                 out.udiLow_pct = 100.0 * low / occupiedHours;

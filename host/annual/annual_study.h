@@ -27,10 +27,11 @@
 // Noise: the coefficients' own standard errors (their batches) give each cell's mean illuminance
 // over the occupied hours a standard error, sqrt(sum_p (mean_h L_p)^2 var D[s][p]) (the same
 // coefficients serve every hour), and the hours' illuminance a relative RMS noise. With the sun
-// apart, the second line's form: the sun's patch weighs D by its sky alone and D_indirect by the
-// sun (their covariance is left out, as the patches' are: it is weighted by the patch's sky
-// luminance, thousands of times below the sun's). S's own quadrature error is not counted: it is
-// independent from hour to hour and small beside the coefficients' (docs/annual.md).
+// apart, the second line's form: a patch weighs D by its sky and D_indirect by the sun, with the
+// covariance of the two from the batches (cov(D, D_indirect) = (var D - var D_direct +
+// var D_indirect) / 2, since D = D_direct + D_indirect); the covariances between patches are left
+// out, with either sun. S's own quadrature error is not counted: it is independent from hour to
+// hour and small beside the coefficients' (docs/annual.md).
 #pragma once
 
 #include <cstddef>
@@ -53,7 +54,7 @@ struct AnnualSettings {
     double udiLow_lux = 100.0, udiHigh_lux = 2000.0;
     bool learnForYear = true;  // adaptive emission learns for the year's mean sky (annualPatchWeights)
     bool exactSun = true;      // the sun's direct light at its own position (direct_sun.h), not its patch's
-    int sunPoints = 2;         // ... from sunPoints x sunPoints jittered points a cell and hour
+    int sunPoints = 4;         // ... from sunPoints x sunPoints jittered points a cell and hour
 };
 
 // The occupied hours' skies as patch vectors.

@@ -290,6 +290,34 @@ def sun_in_one_patch(Lsun, omega):
     return out
 
 
+def build_models(scene, work, env):
+    """Step 1's models in WORK: scene_open.rad (gltf_to_rad.py SCENE --open-windows), model.rad (it
+    under the unit sky glow) and model_black.rad (every material black), and their octrees; returns
+    {"model": WORK/model.oct, "black": WORK/black.oct}."""
+    geom = os.path.join(work, "scene_open.rad")
+    run([sys.executable, os.path.join(HERE, "gltf_to_rad.py"), scene, "--open-windows", "--out", geom], env=env)
+    text = open(geom).read()
+    if text.count("\n# materials\n") != 1:
+        sys.exit("%s: unexpected layout (no single '# materials' line)" % geom)
+    head, body = text.split("\n# materials\n")
+    if "void glass" in body:
+        sys.exit("%s: still has glass; give the open-window scene" % geom)
+    header = "\n".join(l for l in head.splitlines()[:3] if l.startswith("#"))
+    model, black = os.path.join(work, "model.rad"), os.path.join(work, "model_black.rad")
+    with open(model, "w") as f:
+        f.write(header + "\n\n" + SKY + "\n# materials\n" + body)
+    black_body, nblack = re.subn(r"(void plastic \S+\n0\n0\n5) \S+ \S+ \S+ (\S+) (\S+)", r"\1 0 0 0 0 0", body)
+    with open(black, "w") as f:
+        f.write(header + "\n# every material black: only the sky seen directly\n\n" + SKY + "\n# materials\n" + black_body)
+    print("wrote %s (unit sky glow + %s) and %s (%d materials made black)" % (
+        os.path.relpath(model, ROOT), os.path.relpath(geom, ROOT), os.path.relpath(black, ROOT), nblack))
+    octs = {}
+    for name, rad in (("model", model), ("black", black)):
+        octs[name] = os.path.join(work, name + ".oct")
+        run(["oconv", os.path.basename(rad)], cwd=work, stdout=octs[name], env=env)
+    return octs
+
+
 # --------------------------------------------------------------------------------------------
 # metrics
 
@@ -374,27 +402,7 @@ def main():
 
     # 1. ---------------------------------------------------------------------------------------
     step("1. Radiance model, octrees and sensor points")
-    geom = os.path.join(work, "scene_open.rad")
-    run([sys.executable, os.path.join(HERE, "gltf_to_rad.py"), a.scene, "--open-windows", "--out", geom], env=env)
-    text = open(geom).read()
-    if text.count("\n# materials\n") != 1:
-        sys.exit("%s: unexpected layout (no single '# materials' line)" % geom)
-    head, body = text.split("\n# materials\n")
-    if "void glass" in body:
-        sys.exit("%s: still has glass; give the open-window scene" % geom)
-    header = "\n".join(l for l in head.splitlines()[:3] if l.startswith("#"))
-    model, black = os.path.join(work, "model.rad"), os.path.join(work, "model_black.rad")
-    with open(model, "w") as f:
-        f.write(header + "\n\n" + SKY + "\n# materials\n" + body)
-    black_body, nblack = re.subn(r"(void plastic \S+\n0\n0\n5) \S+ \S+ \S+ (\S+) (\S+)", r"\1 0 0 0 0 0", body)
-    with open(black, "w") as f:
-        f.write(header + "\n# every material black: only the sky seen directly\n\n" + SKY + "\n# materials\n" + black_body)
-    print("wrote %s (unit sky glow + %s) and %s (%d materials made black)" % (
-        os.path.relpath(model, ROOT), os.path.relpath(geom, ROOT), os.path.relpath(black, ROOT), nblack))
-    octs = {}
-    for name, rad in (("model", model), ("black", black)):
-        octs[name] = os.path.join(work, name + ".oct")
-        run(["oconv", os.path.basename(rad)], cwd=work, stdout=octs[name], env=env)
+    octs = build_models(a.scene, work, env)
     pts_path = os.path.join(work, "points_%g.pts" % a.spacing)
     run([sys.executable, os.path.join(HERE, "workplane_points.py"), a.scene, "--out", pts_path,
          "--floor", a.floor, "--height", "%g" % a.height, "--spacing", "%g" % a.spacing], env=env)

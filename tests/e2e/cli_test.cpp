@@ -760,12 +760,12 @@ TEST(CliAnnual, AYearOfTheShippedWeatherOnTheRoom)
     // The sun apart from the sky by default (five-phase); in its patch (two-phase) on request: the
     // same render, so the same coefficients, and the year's metrics from the other sun.
     EXPECT_EQ(a["sun"], "exact");
-    EXPECT_EQ(a["sun_points"], 2);
-    // 2 x 2 a cell for every daylit hour with direct sun (most of them)
+    EXPECT_EQ(a["sun_points"], 4);
+    // 4 x 4 a cell for every daylit hour with direct sun (most of them)
     const auto samples = a["direct_sun_samples"].get<std::uint64_t>();
-    EXPECT_EQ(samples % (4 * cells), 0u);
-    EXPECT_GT(samples, 4 * cells * a["daylit_hours"].get<std::uint64_t>() / 2);
-    EXPECT_LE(samples, 4 * cells * a["daylit_hours"].get<std::uint64_t>());
+    EXPECT_EQ(samples % (16 * cells), 0u);
+    EXPECT_GT(samples, 16 * cells * a["daylit_hours"].get<std::uint64_t>() / 2);
+    EXPECT_LE(samples, 16 * cells * a["daylit_hours"].get<std::uint64_t>());
     EXPECT_NE(csv.find(",ase_hours,sun_mean_lux\n"), std::string::npos);
     const CliRun p = run("render " + scene + " --out " + dir + "/p --annual " + epw +
                          " --work-plane floor --sensor-spacing 0.5 --paths 2000000 --no-progress --annual-sun patch");

@@ -218,6 +218,7 @@ TEST(AnnualStudy, MetricsOfKnownMatrices)
     // indirect). E = D v - D_direct L_sun + S.
     D[(cells + 0) * P + cap] = 0.6;
     D[(2 * cells + 0) * P + cap] = 0.4;
+    se[(cells + 0) * P + cap] = 0.015;
     se[(2 * cells + 0) * P + cap] = 0.02;
     std::vector<std::size_t> asked;
     const DirectSunSource sun = [&](std::size_t first, std::size_t count) {
@@ -240,10 +241,11 @@ TEST(AnnualStudy, MetricsOfKnownMatrices)
     EXPECT_NEAR(x.cells[1].mean_lux, 0.5 * mean0, 1e-9);
     EXPECT_EQ(x.cells[1].aseHours, 0);
     EXPECT_EQ(x.cells[1].sunMean_lux, 0.0);
-    // the yearly mean's standard error: the sun's patch weighs D by its sky, D_indirect by the sun
-    const double meanSky = mean0, meanSun = 6000.0 / 12;
+    // the yearly mean's standard error: the sun's patch weighs D by its sky, D_indirect by the sun,
+    // their covariance (var D - var D_direct + var D_indirect) / 2 from the three variances
+    const double sky = mean0 - 6000.0 / 12, sunMean = 6000.0 / 12;
     EXPECT_NEAR(x.cells[0].meanStdErr_lux,
-                std::sqrt((meanSky - meanSun) * (meanSky - meanSun) * 1e-4 + meanSun * meanSun * 4e-4), 1e-9);
+                std::sqrt(sky * sky * 1e-4 + sunMean * sunMean * 4e-4 + sky * sunMean * (1e-4 - 2.25e-4 + 4e-4)), 1e-9);
     EXPECT_NEAR(x.ase_pct, 25.0, 1e-12);
 }
 
