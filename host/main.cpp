@@ -23,6 +23,7 @@
 #include "trace/device_bvh.h"
 #include "team/team.h"
 #include "util/error.h"
+#include "util/stop_signals.h"
 #ifdef FEN_HAVE_MPI
 #include "team/mpi_team.h"
 #endif
@@ -82,6 +83,8 @@ int main(int argc, char** argv)
             return fail(e.what(), 1);
         }
         fen::setProcessTeam(mpi.get());
+        // a signal reaches every rank: one line says so, rank 0's
+        fen::StopSignals::setQuiet(!mpi->root());
     }
 #endif
     CLI::App app{"fenestra - light tracer for daylit interiors (OpenCL)", "fenestra"};

@@ -9,6 +9,7 @@ namespace fen {
 namespace {
 
 std::atomic<bool> gStop{false};
+std::atomic<bool> gQuiet{false};
 int gDepth = 0;  // StopSignals alive (single-threaded: constructed and destroyed on the main thread)
 
 // Only async-signal-safe calls here.
@@ -19,6 +20,8 @@ extern "C" void onStopSignal(int sig)
         std::raise(sig);
         return;
     }
+    if (gQuiet.load())
+        return;
     static const char msg[] =
         "\nfenestra: interrupted: finishing the paths in flight and writing the image (again to quit now)\n";
     const ssize_t ignored = ::write(STDERR_FILENO, msg, sizeof msg - 1);
@@ -48,6 +51,11 @@ StopSignals::~StopSignals()
     std::signal(SIGTERM, oldTerm_);
     std::signal(SIGHUP, oldHup_);
     std::signal(SIGPIPE, oldPipe_);
+}
+
+void StopSignals::setQuiet(bool quiet)
+{
+    gQuiet = quiet;
 }
 
 std::atomic<bool>* StopSignals::flag()

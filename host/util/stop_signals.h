@@ -21,6 +21,9 @@ public:
     // The flag the first signal sets (what the render loop polls).
     static std::atomic<bool>* flag();
     static bool requested() { return flag()->load(); }
+    // Quiet: the first signal stops as ever but prints nothing (the ranks of a team but the root,
+    // so that a Ctrl-C to mpirun prints one line, not one per rank).
+    static void setQuiet(bool quiet);
 
 private:
     bool outermost_ = false;

@@ -148,6 +148,12 @@ TEST(Team, AStoppedTeamResumesWithAnotherNumberOfRanksToTheSameBytes)
     EXPECT_TRUE(stopped["interrupted"].get<bool>());
     EXPECT_GT(stopped["batches"].get<int>(), 0);
     EXPECT_FALSE(slurp(dir + "/r.exr").empty());
+    // every rank got the signal; one line says so (the root's)
+    const std::string err = slurp(dir + "/err");
+    const std::string said = "fenestra: interrupted: finishing the paths in flight";
+    const std::size_t first = err.find(said);
+    EXPECT_NE(first, std::string::npos) << err;
+    EXPECT_EQ(err.find(said, first + 1), std::string::npos) << err;
     const CliRun r = run("render " + kRoom + " --out " + dir + "/r.exr" + args + " --resume " + dir + "/c.ckpt", mpirun(3));
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(slurp(dir + "/r.exr"), slurp(dir + "/whole.exr"));
