@@ -452,6 +452,11 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
         annualJson = writeAnnual(sensors, *r.daylightCoefficients, *annualWeather, *annualSkyVectors,
                                  opt.annual.settings, directSun ? &*directSun : nullptr, *annualOut, outputs,
                                  &annualLines);
+        if (directSun) {  // its launches join the render's in the JSON's kernels
+            const auto& e = ctx.stats().entries();
+            if (const auto k = e.find("direct_sun"); k != e.end())
+                r.kernels["direct_sun"] = k->second;
+        }
     }
     if (opt.sensors.falseColor) {
         // the image's luminance in false colour, on a log scale of whole decades

@@ -767,6 +767,7 @@ TEST(CliAnnual, AYearOfTheShippedWeatherOnTheRoom)
     EXPECT_GT(samples, 16 * cells * a["daylit_hours"].get<std::uint64_t>() / 2);
     EXPECT_LE(samples, 16 * cells * a["daylit_hours"].get<std::uint64_t>());
     EXPECT_NE(csv.find(",ase_hours,sun_mean_lux\n"), std::string::npos);
+    EXPECT_GT(j["kernels"]["direct_sun"]["launches"].get<int>(), 0) << j["kernels"].dump();
     const CliRun p = run("render " + scene + " --out " + dir + "/p --annual " + epw +
                          " --work-plane floor --sensor-spacing 0.5 --paths 2000000 --no-progress --annual-sun patch");
     ASSERT_EQ(p.status, 0) << p.err;
