@@ -327,10 +327,7 @@ def main():
     wd = os.path.join(work, "direct_sun")
     os.makedirs(wd, exist_ok=True)
     out_json = a.json or os.path.join(work, "direct_sun_reference.json")
-    rbin, rlib = ar.find_radiance(a.radiance)
-    env = dict(os.environ, PATH=rbin + os.pathsep + os.environ.get("PATH", ""))
-    env["RAYPATH"] = os.pathsep.join(["."] + ([rlib] if rlib else []) + ([os.environ["RAYPATH"]] if "RAYPATH" in os.environ else []))
-    env.setdefault("POCL_CACHE_DIR", os.path.join(ROOT, "build", "pocl-cache"))
+    rbin, env = radiance_env(a.radiance)
     print("Radiance: %s (RAYPATH=%s); POCL_CACHE_DIR=%s; nice +%d" % (rbin, env["RAYPATH"], env["POCL_CACHE_DIR"], a.nice))
     version = subprocess.run(["rcontrib", "-version"], capture_output=True, text=True, env=env).stdout.strip()
     report = {"scene": os.path.relpath(a.scene, ROOT), "epw": os.path.relpath(a.epw, ROOT), "occupied": a.occupied,
@@ -616,11 +613,26 @@ def main():
                      **{"fenestra_%s_ase_hours" % os.path.basename(r["base"]): r["csv"]["ase_hours"].astype(int).tolist() for r in runs},
                      **{"fenestra_%s_sun_mean_lux" % os.path.basename(r["base"]): r["csv"]["sun_mean_lux"].tolist() for r in runs}},
         "seconds": time.time() - t_start})
+    write_report(out_json, report, t_start)
+    return 0
+
+
+def radiance_env(radiance):
+    """Radiance's bin folder (annual_reference.find_radiance) and an environment that finds it:
+    PATH, RAYPATH with its lib/, and fenestra's PoCL kernel cache."""
+    rbin, rlib = ar.find_radiance(radiance)
+    env = dict(os.environ, PATH=rbin + os.pathsep + os.environ.get("PATH", ""))
+    env["RAYPATH"] = os.pathsep.join(["."] + ([rlib] if rlib else []) + ([os.environ["RAYPATH"]] if "RAYPATH" in os.environ else []))
+    env.setdefault("POCL_CACHE_DIR", os.path.join(ROOT, "build", "pocl-cache"))
+    return rbin, env
+
+
+def write_report(out_json, report, t_start):
+    """The report as indented JSON, and a line saying where and how long it all took."""
     with open(out_json, "w") as f:
         json.dump(report, f, indent=1)
         f.write("\n")
     print("\nwrote %s (%.0f s in all)" % (os.path.relpath(out_json, ROOT), time.time() - t_start))
-    return 0
 
 
 if __name__ == "__main__":

@@ -264,10 +264,7 @@ def main():
     dsd = os.path.join(work, "direct_sun")
     os.makedirs(fp, exist_ok=True)
     out_json = a.json or os.path.join(work, "five_phase_speed.json")
-    rbin, rlib = ar.find_radiance(a.radiance)
-    env = dict(os.environ, PATH=rbin + os.pathsep + os.environ.get("PATH", ""))
-    env["RAYPATH"] = os.pathsep.join(["."] + ([rlib] if rlib else []) + ([os.environ["RAYPATH"]] if "RAYPATH" in os.environ else []))
-    env.setdefault("POCL_CACHE_DIR", os.path.join(ROOT, "build", "pocl-cache"))
+    rbin, env = dsr.radiance_env(a.radiance)
     print("Radiance: %s (RAYPATH=%s); POCL_CACHE_DIR=%s; %d CPUs; %s" % (
         rbin, env["RAYPATH"], env["POCL_CACHE_DIR"], os.cpu_count(), loadavg()))
     version = subprocess.run(["rcontrib", "-version"], capture_output=True, text=True, env=env).stdout.strip()
@@ -647,10 +644,7 @@ def main():
                      "fenestra_mean_lux": [r["csv"]["mean_lux"].tolist() for r in fruns],
                      "fenestra_sun_mean_lux": [r["csv"]["sun_mean_lux"].tolist() for r in fruns]},
         "seconds": time.time() - t_start})
-    with open(out_json, "w") as f:
-        json.dump(report, f, indent=1)
-        f.write("\n")
-    print("\nwrote %s (%.0f s in all)" % (os.path.relpath(out_json, ROOT), time.time() - t_start))
+    dsr.write_report(out_json, report, t_start)
     return 0
 
 
