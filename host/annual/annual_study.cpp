@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "annual/sky_patches.h"
+#include "sky/goniogram.h"
 #include "sky/perez_sky.h"
 #include "sky/weather_sky.h"
 #include "util/error.h"
@@ -19,12 +20,6 @@ namespace fen {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-
-glm::dvec3 towards(double altDeg, double aziDeg)
-{
-    const double c = std::cos(altDeg * kDeg);
-    return {c * std::sin(aziDeg * kDeg), std::sin(altDeg * kDeg), -c * std::cos(aziDeg * kDeg)};
-}
 
 // work(first, last) over [0, n) in one share per hardware thread, each on its own thread: for
 // items that write only their own results.
@@ -86,7 +81,7 @@ AnnualSkies annualSkies(const WeatherFile& file, const AnnualSettings& s)
     const auto work = [&](std::size_t first, std::size_t last) {
         for (std::size_t k = first; k < last; ++k) {
             const HourSky& h = hours[k];
-            const glm::dvec3 sun = towards(h.sunAltitudeDeg, h.sunAzimuthDeg);
+            const glm::dvec3 sun = skyDirection((90.0 - h.sunAltitudeDeg) * kDeg, h.sunAzimuthDeg * kDeg);
             // The Perez sky (perez_sky.h) straight from its formula at each patch's points,
             // scaled so that the patches give the hour's diffuse horizontal illuminance.
             const double z = (90.0 - h.sunAltitudeDeg) * kDeg;

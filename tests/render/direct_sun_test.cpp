@@ -27,6 +27,7 @@
 #include "annual/sky_patches.h"
 #include "render/device_scene.h"
 #include "sensor/sensor_set.h"
+#include "sky/goniogram.h"
 #include "support/cl_fixture.h"
 #include "support/render_support.h"
 #include "support/statistics.h"
@@ -38,10 +39,10 @@ namespace {
 
 using test::rect;
 
+// Towards the sky at an altitude and azimuth (degrees; sky/goniogram.h's frame).
 glm::dvec3 towards(double altDeg, double aziDeg)
 {
-    const double d = M_PI / 180.0, c = std::cos(altDeg * d);
-    return {c * std::sin(aziDeg * d), std::sin(altDeg * d), -c * std::cos(aziDeg * d)};
+    return skyDirection((90.0 - altDeg) * M_PI / 180.0, aziDeg * M_PI / 180.0);
 }
 
 // One air/glass interface, unpolarised (kernels/lib/fresnel.h's formula, in double).
