@@ -173,8 +173,7 @@ std::vector<double> DeviceSensors::readMatrices(std::uint64_t paths)
     for (std::size_t k = 0; k < block; ++k) {
         const std::uint64_t* all = acc.data() + 2 * k;
         const std::uint64_t* direct = acc.data() + 2 * (block + k);
-        const std::uint64_t d[2] = {all[0] - direct[0], all[1] - direct[1] - (all[0] < direct[0] ? 1u : 0u)};
-        m[2 * block + k] = fixed128(d) * toLux;
+        m[2 * block + k] = fixed128(sub128({all[0], all[1]}, {direct[0], direct[1]})) * toLux;
     }
     return m;
 }

@@ -13,7 +13,7 @@ namespace fen {
 
 namespace {
 
-// The 128-bit sum over pairs of 64-bit words (team.h add128), as an MPI operation.
+// The 128-bit sum over pairs of 64-bit words (util/fixed_point.h add128), as an MPI operation.
 void add128Op(void* in, void* inout, int* len, MPI_Datatype*)
 {
     const U128* a = static_cast<const U128*>(in);

@@ -1,5 +1,5 @@
 // team_sums_test.cpp — the team's device sums (host/team/shared_sums.h, kernels/team_sums.cl)
-// against the host's 128-bit arithmetic (team/team.h add128, sub128): a buffer of mixed records
+// against the host's 128-bit arithmetic (util/fixed_point.h add128, sub128): a buffer of mixed records
 // (two 128-bit sums and a count) holding arbitrary words, changed by "this member's pass", then
 // summed with another member's differences, must hold before + both, with every carry, borrow and
 // wrap exact; and the same from zeros, where nothing is copied.
