@@ -3,7 +3,8 @@
  * Work-item i, slot i: a miss ends the path (or its branch); a surface is shaded by shade_path(),
  * which may write a camera connection for connect.cl. Writes paths[i], splits[i] while branches of
  * a split wait, and connections[i] (pixel FEN_INVALID_ID when there is none). Atomics: the alive
- * and vertex counters (per work-group), the max-depth counter. The guide's tables (lib/guide.h) are read at
+ * and vertex counters (per work-group), the max-depth counter, and with weight windows the guide's
+ * arrival statistics (lib/guide.h guide_arrive). The guide's tables (lib/guide.h) are read at
  * first diffuse vertices when guide_params->slots > 0. Built with -DFEN_HAS_SENSORS, the segment
  * that led to the hit (or to the miss) first adds its flux to the sensor cells it crosses
  * (lib/sensor.h); without it the sensor arguments are never read.
@@ -61,7 +62,7 @@ kernel void shade_paths(global const RenderParams* params, global PathState* pat
                         global const uint* prim_material, global const DevMaterial* materials,
                         global const float4* prim_uv, global const uint* texels, global const DevCamera* cam,
                         global Connection* connections, global const GuideParams* guide_params,
-                        global const uint* guide_tables,
+                        global const uint* guide_tables, volatile global ulong* guide_window_stats,
                         global const DevSensorInfo* sensor_info, global const DevSensorPlane* sensor_planes,
                         global const DevSensorCell* sensor_cells, global const uint* sensor_bucket_start,
                         global const uint* sensor_bucket_cells, volatile global ulong* sensor_accum,
@@ -69,8 +70,8 @@ kernel void shade_paths(global const RenderParams* params, global PathState* pat
                         volatile global ulong* counters)
 {
     local uint alive_in_group;
-    VertexTally tally = {0, 0};
-    const Guide guide = {guide_params, guide_tables};
+    VertexTally tally = {0, 0, 0, 0};
+    const Guide guide = {guide_params, guide_tables, guide_window_stats};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
     const Sensors sensors = {sensor_info, sensor_planes, sensor_cells, sensor_bucket_start, sensor_bucket_cells,
                              sensor_accum, sensor_cell_stats, sensor_steer, params->fixed_scale, params->stats_scale};
@@ -79,4 +80,6 @@ kernel void shade_paths(global const RenderParams* params, global PathState* pat
     group_count_add(counters + FEN_CTR_ALIVE, alive, &alive_in_group);
     group_count_add(counters + FEN_CTR_DIFFUSE_VERTICES, (uint)tally.diffuse, &alive_in_group);
     group_count_add(counters + FEN_CTR_GUIDED_VERTICES, (uint)tally.guided, &alive_in_group);
+    group_count_add(counters + FEN_CTR_SPLIT_BRANCHES, (uint)tally.split, &alive_in_group);
+    group_count_add(counters + FEN_CTR_WINDOW_CULLS, (uint)tally.culled, &alive_in_group);
 }

@@ -10,7 +10,7 @@ kernel void guide_sample_probe(global const GuideParams* guide_params, global co
     const uint i = get_global_id(0);
     if (i >= n)
         return;
-    const Guide g = {guide_params, guide_tables};
+    const Guide g = {guide_params, guide_tables, 0};
     if (!(guide_record_of(&g, slot).w & FEN_GUIDE_LEARNED)) { /* only a learned slot has columns */
         out[i] = (float4)(0.0f);
         return;
@@ -27,7 +27,7 @@ kernel void guide_slot_probe(global const GuideParams* guide_params, global cons
                              global const float4* x, global const float4* n, uint count, global uint* slot)
 {
     const uint i = get_global_id(0);
-    const Guide g = {guide_params, guide_tables};
+    const Guide g = {guide_params, guide_tables, 0};
     if (i < count)
         slot[i] = guide_slot(&g, x[i].xyz, n[i].xyz);
 }
@@ -39,6 +39,6 @@ kernel void guide_leaf_probe(global const GuideParams* guide_params, global cons
     const uint i = get_global_id(0);
     if (i >= count)
         return;
-    const Guide g = {guide_params, guide_tables};
+    const Guide g = {guide_params, guide_tables, 0};
     leaf[i] = guide_leaf(&g, guide_record_of(&g, slot), sq[i]);
 }

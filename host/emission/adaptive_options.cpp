@@ -64,6 +64,12 @@ public:
                           "With adaptive --adaptive-guide on: halve a spatial leaf whose slots gathered this many contributions in a pass (default 4096)");
         render.add_option("--adaptive-guide-vertices", guideVertices_,
                           "With adaptive --adaptive-guide on: the diffuse vertices the guide draws at, first (default) or every");
+        render.add_option("--adaptive-window", window_,
+                          "With adaptive --adaptive-guide on: weight windows -- split or cull a path at its first diffuse vertex by its expected contribution, on or off (default off)");
+        render.add_option("--adaptive-window-split", windowSplit_,
+                          "With adaptive --adaptive-window on: most branches a path splits into, 2..1024 (default 16)");
+        render.add_option("--adaptive-window-survival", windowSurvival_,
+                          "With adaptive --adaptive-window on: least probability a path below its window survives with, (0, 1]; 1 (default): never culled");
         render.add_option("--adaptive-guide-memory", guideMemory_,
                           "With adaptive --adaptive-guide on: MiB of device memory for the guide's trees (default 256)");
         render.add_option("--adaptive-target", target_,
@@ -85,7 +91,7 @@ public:
         const bool tuned = estimate_ || initialSkyDepth_ || maxSkyDepth_ || initialDepth_ || maxDepth_ ||
                            defensive_ || diskShare_ || split_ || firstPass_ || maxCells_ || prior_ || weights_ ||
                            target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_ ||
-                           guideVertices_;
+                           guideVertices_ || window_ || windowSplit_ || windowSurvival_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
@@ -117,13 +123,22 @@ public:
         a.guide.memoryMiB = guideMemory_.value_or(a.guide.memoryMiB);
         if (guideVertices_)
             a.guide.everyVertex = choice("--adaptive-guide-vertices", *guideVertices_, "every", "first");
+        if (window_)
+            a.guide.window = choice("--adaptive-window", *window_, "on", "off");
+        a.guide.windowSplitMax = windowSplit_.value_or(a.guide.windowSplitMax);
+        a.guide.windowMinSurvival = windowSurvival_.value_or(a.guide.windowMinSurvival);
+        if ((windowSplit_ || windowSurvival_) && !a.guide.window)
+            throw Error("--adaptive-window-split and --adaptive-window-survival apply with --adaptive-window on");
+        if (a.guide.window && !a.guide.enabled)
+            throw Error("--adaptive-window on: needs --adaptive-guide on (the windows are learned with the guide)");
         validateAdaptiveOptions(a);
     }
 
 private:
-    std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_;
-    std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_;
-    std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_;
+    std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_, window_;
+    std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_, windowSplit_;
+    std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_,
+        windowSurvival_;
     std::optional<std::uint64_t> firstPass_;
     std::optional<std::uint32_t> maxCells_;
 };
@@ -186,7 +201,10 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
             {"guide_split", a.guide.splitShare},
             {"guide_space_split", a.guide.spatialSplitConnections},
             {"guide_memory_mib", a.guide.memoryMiB},
-            {"guide_every_vertex", a.guide.everyVertex}};
+            {"guide_every_vertex", a.guide.everyVertex},
+            {"window", a.guide.window},
+            {"window_split_max", a.guide.windowSplitMax},
+            {"window_min_survival", a.guide.windowMinSurvival}};
 }
 
 }  // namespace fen

@@ -199,7 +199,7 @@ public:
     {
         static_assert(FEN_CELL_SUM_LO == 0 && FEN_CELL_SUMSQ_LO == 2 && FEN_CELL_CONNECTIONS == 4 &&
                           FEN_CELL_STATS_WORDS == 5, "a cell's statistics: two 128-bit sums and a count");
-        return {{&stats_, FEN_CELL_PARTS * grid_->cells().size(), {2, 2, 1}}, guide_->summed()};
+        return {{&stats_, FEN_CELL_PARTS * grid_->cells().size(), {2, 2, 1}}, guide_->summed(), guide_->windowSummed()};
     }
     void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
     {

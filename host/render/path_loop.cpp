@@ -110,7 +110,7 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
                                          &scene.primMaterial(), &scene.materials(), &scene.primUv(),
                                          &scene.texels(), &cameraBuf_,
                                          &film.accumulators(), ek.cellStats, pixelScale,
-                                         &guide->params(), &guide->tables(), &guide->stats(),
+                                         &guide->params(), &guide->tables(), &guide->stats(), &guide->windowStats(),
                                          &sensors.info(), &sensors.planes(), &sensors.cellTable(),
                                          &sensors.bucketStart(), &sensors.bucketCells(), &sensors.accumulators(),
                                          &sensors.steer()};
@@ -124,11 +124,11 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     ocl::setKernelArgs(intersect_, paths_, hits_, pool, b.nodes(), b.packets());
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
                        scene.primUv(), scene.texels(), cameraBuf_, connections_, guide->params(), guide->tables(),
-                       sensors.info(), sensors.planes(), sensors.cellTable(), sensors.bucketStart(),
+                       guide->windowStats(), sensors.info(), sensors.planes(), sensors.cellTable(), sensors.bucketStart(),
                        sensors.bucketCells(), sensors.accumulators(), *ek.cellStats, sensors.steer(), counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), film.accumulators(), *ek.cellStats, *pixelScale, guide->stats(),
-                       counters_);
+                       guide->windowStats(), counters_);
     ocl::setKernelArgs(cameraPass_, paramsBuf_, cameraBuf_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), sky.theta, sky.phi, sky.values, film.cameraSamples(), film.cameraImage(),
                        counters_);
@@ -298,6 +298,8 @@ void PathLoop::endBatch(std::uint32_t batch, BatchCounts& counts, Team& team)
     counts.cameraGlassCuts += ctr[FEN_CTR_CAMERA_GLASS_CUT];
     counts.diffuseVertices += ctr[FEN_CTR_DIFFUSE_VERTICES];
     counts.guidedVertices += ctr[FEN_CTR_GUIDED_VERTICES];
+    counts.splitBranches += ctr[FEN_CTR_SPLIT_BRANCHES];
+    counts.windowCulls += ctr[FEN_CTR_WINDOW_CULLS];
     counts.cutFlux += fixed128(ctr + FEN_CTR_CUT_FLUX_LO) / static_cast<double>(params_.fixed_scale);
 }
 

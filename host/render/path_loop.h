@@ -49,6 +49,7 @@ struct BatchCounts {
     std::uint64_t badContributions = 0, overflows = 0, statsOverflows = 0;
     std::uint64_t maxBounceCuts = 0, cameraGlassCuts = 0;
     std::uint64_t diffuseVertices = 0, guidedVertices = 0;  // scatters at diffuse vertices; of them, guided
+    std::uint64_t splitBranches = 0, windowCulls = 0;       // branches splits made; paths windows culled
     double cutFlux = 0.0;  // lm x paths: the flux of the paths --max-bounces cut
 };
 

@@ -567,7 +567,10 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
                      {"guided_vertices", n.guidedVertices},
                      {"guided_vertex_share", n.diffuseVertices ? static_cast<double>(n.guidedVertices) /
                                                                      static_cast<double>(n.diffuseVertices)
-                                                               : 0.0}};
+                                                               : 0.0},
+                     // branches made by splitting (--split, weight windows); paths the windows culled
+                     {"split_branches", n.splitBranches},
+                     {"window_culls", n.windowCulls}};
     for (const auto& [name, e] : r.kernels)
         j["kernels"][name] = {{"launches", e.launches}, {"device_seconds", e.deviceSeconds}};
     j["png_exposure"] = exposure;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <numeric>
 
 #include "io/state_io.h"
@@ -27,6 +28,7 @@ static_assert(FEN_GUIDE_MAX_DEPTH <= 14, "a leaf's corner has 14 bits per axis")
 // Device bytes per leaf: its statistics, its entry, up to two alias columns, a third of a node.
 constexpr double kBytesPerLeaf = 8.0 * FEN_GUIDE_STATS_WORDS + 8.0 + 16.0 + 16.0 / 3.0;
 constexpr double kMiB = 1024.0 * 1024.0;
+constexpr std::size_t kSavedPerLeaf = 5;  // a leaf's totals in a checkpoint (save(), load())
 
 // Voxels along each side of the lattice cube (side 2R): the power of 2 at or above 2 voxelsAcross.
 std::uint32_t latticeCells(int voxelsAcross)
@@ -74,6 +76,13 @@ void validateGuideOptions(const GuideOptions& o)
         throw Error(cat("--adaptive-guide-split ", o.splitShare, ": must be in (0, 1]"));
     if (!(o.minLeafConnections >= 1.0))
         throw Error(cat("guide minimum contributions per leaf ", o.minLeafConnections, " must be at least 1"));
+    if (o.windowSplitMax < 2 || o.windowSplitMax > 1024)
+        throw Error(cat("--adaptive-window-split ", o.windowSplitMax, ": must be in 2..1024"));
+    if (!(o.windowMinSurvival > 0.0 && o.windowMinSurvival <= 1.0))
+        throw Error(cat("--adaptive-window-survival ", o.windowMinSurvival, ": must be in (0, 1] (with 0 a path "
+                        "the windows cull could never survive: bias)"));
+    if (!(o.windowMinVisits >= 1.0))
+        throw Error(cat("window minimum visits ", o.windowMinVisits, " must be at least 1"));
     // The trees' initial 8 x 8 leaves must fit, with room to refine.
     const double cells = latticeCells(o.voxelsAcross), slots = FEN_GUIDE_SIDES * cells * cells * cells;
     const double initialMiB =
@@ -143,7 +152,8 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
         trees_.assign(FEN_GUIDE_SIDES * voxels, initialTree());
         // Per leaf: its own bytes, and its share of a slot's record and a spatial node when every
         // slot has at least the initial 64 leaves.
-        const double perLeaf = kBytesPerLeaf + (16.0 + 8.0 / FEN_GUIDE_SIDES) / kInitialLeaves;
+        const double perLeaf = kBytesPerLeaf + (opt_.window ? 8.0 * FEN_GUIDE_WINDOW_WORDS + 4.0 / kInitialLeaves : 0.0) +
+                               (16.0 + 8.0 / FEN_GUIDE_SIDES) / kInitialLeaves;
         leafCapacity_ = static_cast<std::size_t>((opt_.memoryMiB * kMiB - 4.0 * voxels) / perLeaf);
         slotCapacity_ = std::max(trees_.size(), leafCapacity_ / kInitialLeaves);
         spatialCapacity_ = slotCapacity_ / FEN_GUIDE_SIDES;
@@ -160,30 +170,44 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
     deviceParams_.spatial_at = static_cast<std::uint32_t>(deviceParams_.voxels_at + voxels);
     const std::size_t nodesAt = deviceParams_.spatial_at + 2 * spatialCapacity_;
     const std::size_t tableWords = nodesAt + 4 * nodeCapacity_ + 2 * leafCapacity_ + 2 * columnCapacity_;
-    if (tableWords >= (std::size_t{1} << 32))
+    if (tableWords + slotCapacity_ >= (std::size_t{1} << 32))
         throw Error(cat("--adaptive-guide-memory ", opt_.memoryMiB, ": the tables would pass 2^32 words"));
     deviceParams_.nodes_at = static_cast<std::uint32_t>(nodesAt);
     deviceParams_.leaves_at = static_cast<std::uint32_t>(deviceParams_.nodes_at + 4 * nodeCapacity_);
     deviceParams_.columns_at = static_cast<std::uint32_t>(deviceParams_.leaves_at + 2 * leafCapacity_);
+    if (opt_.enabled && opt_.window) {
+        deviceParams_.windows_at = static_cast<std::uint32_t>(deviceParams_.columns_at + 2 * columnCapacity_);
+        deviceParams_.window_min_survival = static_cast<float>(opt_.windowMinSurvival);
+        deviceParams_.window_split_max = static_cast<std::uint32_t>(opt_.windowSplitMax);
+    }
+    const std::size_t windowWords = deviceParams_.windows_at ? slotCapacity_ : 0;
     rebuild();
     const auto add = [this](std::size_t bytes) {
         deviceBytes_ += bytes;
         return bytes;
     };
     params_ = ctx_.buffer(CL_MEM_READ_ONLY, add(sizeof deviceParams_), "guide parameters", &deviceParams_);
-    tables_ = ctx_.buffer(CL_MEM_READ_ONLY, add(tableWords * 4), "guide tables");
+    tables_ = ctx_.buffer(CL_MEM_READ_ONLY, add((tableWords + windowWords) * 4), "guide tables");
     stats_ = ctx_.buffer(CL_MEM_READ_WRITE, add(leafCapacity_ * FEN_GUIDE_STATS_WORDS * 8), "guide statistics");
+    windowStats_ = ctx_.buffer(CL_MEM_READ_WRITE, add((windowWords ? leafCapacity_ : 1) * FEN_GUIDE_WINDOW_WORDS * 8),
+                               "guide window statistics");
     upload();
     clearStats();
 }
 
 static_assert(FEN_GUIDE_SUMSQ_LO == 0 && FEN_GUIDE_CONNECTIONS == 2 && FEN_GUIDE_STATS_WORDS == 3,
               "a leaf's statistics as summed() describes them: a 128-bit sum and a count");
+static_assert(FEN_GUIDE_DELIVERED_LO == 0 && FEN_GUIDE_ARRIVED_LO == 2 && FEN_GUIDE_VISITS == 4 &&
+                  FEN_GUIDE_WINDOW_WORDS == 5,
+              "a leaf's window statistics as windowSummed() describes them: two 128-bit sums and a count");
 
 void FirstBounceGuide::clearStats()
 {
     ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0,
                                    std::max<std::size_t>(leafCount_, 1) * FEN_GUIDE_STATS_WORDS * 8);
+    if (deviceParams_.windows_at)
+        ctx_.queue().enqueueFillBuffer(windowStats_, cl_ulong(0), 0,
+                                       std::max<std::size_t>(leafCount_, 1) * FEN_GUIDE_WINDOW_WORDS * 8);
 }
 
 // Splits, in every slot whose table will steer, each leaf that held more than splitShare of its
@@ -257,10 +281,10 @@ std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
                     made_c = static_cast<std::int32_t>(t.nodes.size());
                     t.nodes.push_back({});
                     for (std::uint32_t k = 0; k < 4; ++k) {
-                        Leaf l = quadrant(p.x0, p.y0, p.depth, k);
-                        l.sumSq = p.sumSq / 4.0;
-                        l.connections = p.connections / 4.0;
-                        l.density = p.density;
+                        Leaf l = p;
+                        l.scaleTotals(0.25);
+                        const Leaf q = quadrant(p.x0, p.y0, p.depth, k);
+                        l.x0 = q.x0, l.y0 = q.y0, l.depth = q.depth;
                         t.nodes[static_cast<std::size_t>(made_c)][k] = ~static_cast<std::int32_t>(t.leaves.size());
                         t.leaves.push_back(l);
                     }
@@ -362,10 +386,48 @@ void FirstBounceGuide::rebuild()
         if (t.learned)
             columnWords_.insert(columnWords_.end(), t.alias.begin(), t.alias.end());
     }
+    rebuildWindows();
     if (nodeWords_.size() > 4 * nodeCapacity_ || leafWords_.size() > 2 * leafCapacity_ ||
         columnWords_.size() > 2 * columnCapacity_ || trees_.size() > slotCapacity_ ||
         spatialNodes_.size() > spatialCapacity_)
         throw Error("guide tables: beyond the capacity they were sized for");  // refine() keeps within
+}
+
+// The weight windows (fen_guide.h): the adjoint J(slot) = delivered / arrived -- what a unit of
+// weight arriving at a first vertex there delivers from then on, on average -- and the target
+// T = delivered / visits over all slots -- what a path (or branch) leaving a first vertex delivers
+// on average; the window weight T / J is the arriving weight expected to deliver T. A slot seen
+// fewer than windowMinVisits times has none (0: the fixed rules); one seen that often that never
+// delivered gets FLT_MAX (every path there culled down to windowMinSurvival).
+void FirstBounceGuide::rebuildWindows()
+{
+    windowWords_.clear();
+    windowSlots_ = 0;
+    windowTarget_ = 0.0;
+    if (!deviceParams_.windows_at)
+        return;
+    std::vector<double> delivered(trees_.size(), 0.0), arrived(trees_.size(), 0.0), visits(trees_.size(), 0.0);
+    double allDelivered = 0.0, allVisits = 0.0;
+    for (std::size_t s = 0; s < trees_.size(); ++s) {
+        for (const Leaf& l : trees_[s].leaves) {
+            delivered[s] += l.delivered;
+            arrived[s] += l.arrived;
+            visits[s] += l.visits;
+        }
+        allDelivered += delivered[s];
+        allVisits += visits[s];
+    }
+    windowWords_.assign(trees_.size(), 0u);
+    if (!(allDelivered > 0.0))
+        return;
+    windowTarget_ = allDelivered / allVisits;
+    for (std::size_t s = 0; s < trees_.size(); ++s) {
+        if (visits[s] < opt_.windowMinVisits || !(arrived[s] > 0.0))
+            continue;
+        const double w = delivered[s] > 0.0 ? windowTarget_ * arrived[s] / delivered[s] : 0.0;
+        windowWords_[s] = floatBits(w > 0.0 && w < 3e38 ? static_cast<float>(w) : std::numeric_limits<float>::max());
+        ++windowSlots_;
+    }
 }
 
 void FirstBounceGuide::upload()
@@ -382,6 +444,8 @@ void FirstBounceGuide::upload()
     section(deviceParams_.nodes_at, nodeWords_);
     section(deviceParams_.leaves_at, leafWords_);
     section(deviceParams_.columns_at, columnWords_);
+    if (deviceParams_.windows_at)
+        section(deviceParams_.windows_at, windowWords_);
     q.finish();
 }
 
@@ -468,10 +532,8 @@ std::size_t FirstBounceGuide::refineSpace(const std::vector<double>& passConnect
         spatialLeaves_.push_back(u);
         for (std::uint32_t k = 0; k < FEN_GUIDE_SIDES; ++k) {
             Tree& t = trees_[FEN_GUIDE_SIDES * c.leaf + k];
-            for (Leaf& l : t.leaves) {
-                l.sumSq /= 2.0;
-                l.connections /= 2.0;
-            }
+            for (Leaf& l : t.leaves)
+                l.scaleTotals(0.5);
             trees_.push_back(t);  // the upper half's slot FEN_GUIDE_SIDES upper + k
         }
         leafCount_ += leaves;
@@ -488,6 +550,10 @@ void FirstBounceGuide::learn()
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<std::uint64_t> raw(leafCount_ * FEN_GUIDE_STATS_WORDS);
     ctx_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
+    std::vector<std::uint64_t> windowRaw(deviceParams_.windows_at ? leafCount_ * FEN_GUIDE_WINDOW_WORDS : 0);
+    if (!windowRaw.empty())
+        ctx_.queue().enqueueReadBuffer(windowStats_, CL_TRUE, 0, windowRaw.size() * 8, windowRaw.data());
+    const std::uint64_t* ww = windowRaw.data();
     const double scale = std::ldexp(1.0, -2 * kStatsFixedPointBits);
     const std::uint64_t* w = raw.data();
     std::vector<std::vector<Leaf>> pass(trees_.size());
@@ -500,6 +566,13 @@ void FirstBounceGuide::learn()
             pass[s][i].connections = static_cast<double>(w[FEN_GUIDE_CONNECTIONS]);
             l.sumSq += pass[s][i].sumSq;
             l.connections += pass[s][i].connections;
+            if (ww) {
+                // the window's sums: ratios of them are what it uses, so their units never matter
+                l.delivered += fixed128(ww + FEN_GUIDE_DELIVERED_LO);
+                l.arrived += fixed128(ww + FEN_GUIDE_ARRIVED_LO);
+                l.visits += static_cast<double>(ww[FEN_GUIDE_VISITS]);
+                ww += FEN_GUIDE_WINDOW_WORDS;
+            }
         }
     }
     std::vector<double> passConnections(trees_.size(), 0.0);
@@ -538,7 +611,7 @@ void FirstBounceGuide::save(StateWriter& w) const
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
         const bool seen = std::any_of(t.leaves.begin(), t.leaves.end(),
-                                      [](const Leaf& l) { return l.sumSq > 0.0 || l.connections > 0.0; });
+                                      [](const Leaf& l) { return l.sumSq > 0.0 || l.connections > 0.0 || l.visits > 0.0; });
         if (!seen && isInitial(t))
             continue;
         slots.push_back(s);
@@ -551,10 +624,8 @@ void FirstBounceGuide::save(StateWriter& w) const
             }
         };
         walk(0);
-        for (const Leaf& l : t.leaves) {
-            leaves.push_back(l.sumSq);
-            leaves.push_back(l.connections);
-        }
+        for (const Leaf& l : t.leaves)
+            leaves.insert(leaves.end(), {l.sumSq, l.connections, l.delivered, l.arrived, l.visits});
     }
     w.u64s("guide.space", spaceShape());
     w.u64s("guide.slots", slots);
@@ -608,7 +679,7 @@ void FirstBounceGuide::load(StateReader& r)
         r.fail("guide.space", "values left over, a spatial leaf missing, or more slots than the memory holds");
     const std::vector<std::uint64_t> slots = r.u64s("guide.slots", FEN_GUIDE_SIDES * seenLeaf.size());
     const std::vector<std::uint64_t> shape = r.u64s("guide.shape", 4 * nodeCapacity_);
-    const std::vector<double> leaves = r.f64s("guide.leaves", 2 * leafCapacity_);
+    const std::vector<double> leaves = r.f64s("guide.leaves", kSavedPerLeaf * leafCapacity_);
     const std::vector<std::uint64_t> splits = r.u64s("guide.splits", 4);
     if (splits.size() != 4)
         r.fail("guide.splits", "not (last, deferred, spatial, spatial deferred)");
@@ -633,13 +704,14 @@ void FirstBounceGuide::load(StateReader& r)
                     t.nodes[n][q] = static_cast<std::int32_t>(t.nodes.size());
                     parse(l.x0, l.y0, l.depth);
                 } else {
-                    if (leafAt + 2 > leaves.size())
+                    if (leafAt + kSavedPerLeaf > leaves.size())
                         r.fail("guide.leaves", "fewer leaves than the trees' shapes hold");
-                    l.sumSq = r.finite("guide.leaves", leaves[leafAt]);
-                    l.connections = r.finite("guide.leaves", leaves[leafAt + 1]);
-                    if (l.sumSq < 0.0 || l.connections < 0.0)
-                        r.fail("guide.leaves", "a negative sum or count");
-                    leafAt += 2;
+                    double* totals[kSavedPerLeaf] = {&l.sumSq, &l.connections, &l.delivered, &l.arrived, &l.visits};
+                    for (double* v : totals) {
+                        *v = r.finite("guide.leaves", leaves[leafAt++]);
+                        if (*v < 0.0)
+                            r.fail("guide.leaves", "a negative sum or count");
+                    }
                     t.nodes[n][q] = ~static_cast<std::int32_t>(t.leaves.size());
                     t.leaves.push_back(l);
                 }
@@ -685,11 +757,14 @@ nlohmann::json FirstBounceGuide::report() const
             connections += l.connections;
             checksum.value(l.sumSq);
             checksum.value(l.connections);
+            if (opt_.window)
+                checksum.value(l.visits);
             checksum.value(l.depth);
         }
         checksum.value(t.learned);
     }
     const double used = trees_.size() * 16.0 + leafCount_ * kBytesPerLeaf + 4.0 * voxelWord_.size() +
+                        (deviceParams_.windows_at ? leafCount_ * 8.0 * FEN_GUIDE_WINDOW_WORDS + trees_.size() * 4.0 : 0.0) +
                         8.0 * spatialNodes_.size();
     std::uint32_t maxSpatial = 0;
     for (const SpatialLeaf& l : spatialLeaves_)
@@ -716,6 +791,11 @@ nlohmann::json FirstBounceGuide::report() const
             {"splits_deferred", deferredSplits_},
             {"connections", connections},
             {"checksum", checksum.h},
+            {"window", opt_.window},
+            {"window_slots", windowSlots_},
+            {"window_target", windowTarget_},
+            {"window_split_max", opt_.windowSplitMax},
+            {"window_min_survival", opt_.windowMinSurvival},
             {"learn_seconds", learnSeconds_},
             {"learn_seconds_last_pass", lastLearnSeconds_},
             {"memory_bytes", deviceBytes_},

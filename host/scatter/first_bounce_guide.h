@@ -90,6 +90,16 @@ struct GuideOptions {
     // the snow house -- paths steered into view bounce more and each guided vertex costs a table
     // draw, more than the variance it saves (docs/results/guiding.md, "Every vertex").
     bool everyVertex = false;
+    // Weight windows (roulette and splitting from the learned adjoint): at a path's first diffuse
+    // vertex, a weight whose expected contribution from there on, Y(beta) J(slot), is at least
+    // twice the target T (the mean over all paths) splits into min(floor(ratio), windowSplitMax)
+    // branches; one below half of it is culled with probability 1 - max(ratio, windowMinSurvival),
+    // the survivors' weight over their probability. J and T are learned on the guide's passes;
+    // a slot with fewer than windowMinVisits visits has no window (the fixed rules apply there).
+    bool window = false;
+    int windowSplitMax = 16;
+    double windowMinSurvival = 1.0;  // 1: never culled (culling lost where measured: docs/results/guiding.md)
+    double windowMinVisits = 256.0;
     // No guide: placeholders bound where a strategy has none (GuideParams.slots = 0).
     static GuideOptions off()
     {
@@ -109,8 +119,11 @@ public:
     const cl::Buffer& params() const { return params_; }
     const cl::Buffer& tables() const { return tables_; }
     const cl::Buffer& stats() const { return stats_; }
-    // The statistics as a team sums them (team/shared_sums.h): per leaf, a 128-bit sum and a count.
+    const cl::Buffer& windowStats() const { return windowStats_; }  // with weight windows (fen_guide.h)
+    // The statistics as a team sums them (team/shared_sums.h): per leaf, a 128-bit sum and a count;
+    // and the weight windows' per leaf, two 128-bit sums and a count (none without windows).
     SummedBuffer summed() const { return {&stats_, opt_.enabled ? leafCount_ : 0, {2, 1}}; }
+    SummedBuffer windowSummed() const { return {&windowStats_, deviceParams_.windows_at ? leafCount_ : 0, {2, 2, 1}}; }
     std::size_t deviceBytes() const { return deviceBytes_; }
 
     // After a pass: statistics into the totals, trees refined, new tables up, statistics cleared.
@@ -140,6 +153,13 @@ private:
     // A slot's tree: nodes with four children each (>= 0: a node, < 0: leaf ~c), node 0 the root.
     struct Leaf {
         double sumSq = 0.0, connections = 0.0;  // S(b) and contributions, over all passes
+        // with weight windows, over all passes: the luminance delivered after leaving through the
+        // leaf, the weight's luminance as it arrived at the vertex, and how many left (fen_guide.h)
+        double delivered = 0.0, arrived = 0.0, visits = 0.0;
+        void scaleTotals(double f)
+        {
+            sumSq *= f, connections *= f, delivered *= f, arrived *= f, visits *= f;
+        }
         float density = 1.0f;                   // d(b) the last tables drew it with (1: the cosine)
         std::uint32_t x0 = 0, y0 = 0, depth = 0;  // corner in 2^-FEN_GUIDE_MAX_DEPTH units
         double area() const { return std::ldexp(1.0, -2 * static_cast<int>(depth)); }
@@ -169,6 +189,7 @@ private:
     bool steers(const Tree& t, const std::vector<double>& p) const;
     std::vector<std::uint64_t> spaceShape() const;
     void rebuild();
+    void rebuildWindows();
     void upload();
     ocl::Context& ctx_;
     GuideOptions opt_;
@@ -184,10 +205,12 @@ private:
     std::size_t leafCapacity_ = 0, nodeCapacity_ = 0, columnCapacity_ = 0;
     std::size_t leafCount_ = 0, deferredSplits_ = 0, lastSplits_ = 0;
     // The tables' sections as uploaded (fen_guide.h), each as long as it is used.
-    std::vector<std::uint32_t> records_, spatialWords_, nodeWords_, leafWords_, columnWords_;
+    std::vector<std::uint32_t> records_, spatialWords_, nodeWords_, leafWords_, columnWords_, windowWords_;
+    std::size_t windowSlots_ = 0;  // slots with a window, after rebuild()
+    double windowTarget_ = 0.0;    // T, in units of the delivered statistic, after rebuild()
     std::uint32_t learnedSlots_ = 0, candidateSlots_ = 0, maxDepthSeen_ = 0;
     double learnSeconds_ = 0.0, lastLearnSeconds_ = 0.0;
-    cl::Buffer params_, tables_, stats_;
+    cl::Buffer params_, tables_, stats_, windowStats_;
     std::size_t deviceBytes_ = 0;
 };
 

@@ -10,7 +10,8 @@
  * see the contribution times its pixel's factor in stats_pixel_scale (the adaptive strategy's
  * relative target, DESIGN.md §3.3): steering only, never the image. A connection that carries a
  * first-bounce guide record (c->guide.x > 0) adds its luminance to that box's statistics in
- * guide_stats (lib/guide.h), whatever the strategy. Requires lib/bvh_traverse.h
+ * guide_stats (lib/guide.h), whatever the strategy, and with weight windows (c->guide.z > 0) to its
+ * window statistics in window_stats. Requires lib/bvh_traverse.h
  * (FEN_BVH_WIDTH).
  */
 #ifndef FEN_CONNECT_PATH_H
@@ -26,7 +27,7 @@ static inline void connect_path(global const RenderParams* params, const Connect
                                 global const uint* prim_material, global const DevMaterial* materials,
                                 volatile global ulong* accum, volatile global ulong* cell_stats,
                                 global const float* stats_pixel_scale, volatile global ulong* guide_stats,
-                                volatile global ulong* counters)
+                                volatile global ulong* window_stats, volatile global ulong* counters)
 {
     const uint pixel = as_uint(c->org.w);
     const RayPre r = ray_setup(c->org.xyz, c->to_cam.xyz, 0.0f, 1.0f, FEN_BVH_WIDTH);
@@ -35,7 +36,8 @@ static inline void connect_path(global const RenderParams* params, const Connect
     if (trans.x > 0.0f || trans.y > 0.0f || trans.z > 0.0f) {
         const float3 value = c->value.xyz * trans;
         if (c->guide.x > 0.0f)
-            guide_record(guide_stats, c->guide.x, as_uint(c->guide.y), rgb_luminance(value), counters);
+            guide_record(guide_stats, window_stats, c->guide.x, as_uint(c->guide.y), rgb_luminance(value),
+                         c->guide.z > 0.0f ? params->fixed_scale : 0.0f, counters);
 #ifdef FEN_EMISSION_STATS
         const uint part = as_uint(c->value.w);
         if (!(part & FEN_PART_ESTIMATE_ONLY))

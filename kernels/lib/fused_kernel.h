@@ -33,7 +33,7 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
                         global const DevCamera* cam, volatile global ulong* accum,
                         volatile global ulong* cell_stats, global const float* stats_pixel_scale,
                         global const GuideParams* guide_params, global const uint* guide_tables,
-                        volatile global ulong* guide_stats,
+                        volatile global ulong* guide_stats, volatile global ulong* guide_window_stats,
                         global const DevSensorInfo* sensor_info, global const DevSensorPlane* sensor_planes,
                         global const DevSensorCell* sensor_cells, global const uint* sensor_bucket_start,
                         global const uint* sensor_bucket_cells, volatile global ulong* sensor_accum,
@@ -43,10 +43,10 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
     const Sensors sensors = {sensor_info, sensor_planes, sensor_cells, sensor_bucket_start, sensor_bucket_cells,
                              sensor_accum, cell_stats, sensor_steer, params->fixed_scale, params->stats_scale};
     const FEN_EMITTER_TYPE emitter = FEN_EMITTER_MAKE;
-    const Guide guide = {guide_params, guide_tables};
+    const Guide guide = {guide_params, guide_tables, guide_window_stats};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
     ulong emitted = 0, extension = 0, shadow = 0;
-    VertexTally tally = {0, 0};
+    VertexTally tally = {0, 0, 0, 0};
     for (;;) {
         const ulong first = atom_add(counters + FEN_CTR_NEXT_PATH, (ulong)FEN_FUSED_CHUNK);
         if (first >= params->path_end)
@@ -80,7 +80,7 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
                 const int alive = shade_path(params, &guide, &p, &h, &sm, cam, &c, &split, &tally, counters);
                 if (as_uint(c.org.w) != FEN_INVALID_ID) {
                     connect_path(params, &c, nodes, packets, prim_material, materials, accum, cell_stats,
-                                 stats_pixel_scale, guide_stats, counters);
+                                 stats_pixel_scale, guide_stats, guide_window_stats, counters);
                     ++shadow;
                 }
                 if (!alive && !next_branch(params, &guide, &p, &split, &sm, cam, &tally, counters))
@@ -98,6 +98,10 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
         atom_add(counters + FEN_CTR_DIFFUSE_VERTICES, tally.diffuse);
     if (tally.guided)
         atom_add(counters + FEN_CTR_GUIDED_VERTICES, tally.guided);
+    if (tally.split)
+        atom_add(counters + FEN_CTR_SPLIT_BRANCHES, tally.split);
+    if (tally.culled)
+        atom_add(counters + FEN_CTR_WINDOW_CULLS, tally.culled);
 }
 
 #endif /* FEN_FUSED_KERNEL_H */

@@ -65,6 +65,7 @@ static inline int scatter_diffuse(global const RenderParams* params, PathState* 
    FEN_CTR_GUIDED_VERTICES (the kernels add them to the counters once per work-item or group). */
 typedef struct {
     ulong diffuse, guided;
+    ulong split, culled; /* weight windows and --split: branches made; windows: paths culled */
 } VertexTally;
 
 /* The point of the square for a diffuse scatter at a vertex of learned slot record r: drawn from
@@ -91,7 +92,8 @@ static inline int scatter_through(global const RenderParams* params, PathState* 
    path delivers from here on (lib/guide.h); else scatter_diffuse(). */
 static inline int scatter_first(global const RenderParams* params, const Guide* guide,
                                 global const DevCamera* cam, PathState* p, float3 albedo, float3 n,
-                                float4 u, uint slot, float3* next, VertexTally* t)
+                                float4 u, uint slot, float3* next, VertexTally* t,
+                                volatile global ulong* counters)
 {
     t->diffuse += 1;
     if (guide->params->slots == 0u)
@@ -106,6 +108,8 @@ static inline int scatter_first(global const RenderParams* params, const Guide* 
     } else {
         key = guide_leaf(guide, r, sq);
     }
+    if (guide->params->windows_at)
+        guide_arrive(guide, key, rgb_luminance(p->beta.xyz) * (params->fixed_scale / cam->up.w), counters);
     const int alive = scatter_through(params, p, albedo, n, u, sq, d, next);
     const float y = rgb_luminance(p->beta.xyz);
     p->org.w = alive && y > 0.0f ? guide->params->stats_scale * cam->up.w / (y * d) : 0.0f;
@@ -198,7 +202,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
                     c->org = (float4)(o, as_float(pixel));
                     c->to_cam = (float4)(cam->position.xyz - o, 0.0f);
                     c->value = (float4)(value, p->beta.w); /* the emission cell */
-                    c->guide = (float4)(p->org.w, p->dir.w, 0.0f, 0.0f);
+                    c->guide = (float4)(p->org.w, p->dir.w, guide->params->windows_at ? 1.0f : 0.0f, 0.0f);
                 }
             }
         }
@@ -208,23 +212,41 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
             /* the first diffuse vertex: where a path may split, and where the guide steers */
             p->flags |= FEN_PATH_BRANCHED;
             const uint slot = guide->params->slots ? guide_slot(guide, x, n) : 0u;
-            /* not the portal complement's estimate-only paths: what they measure needs no precision */
-            if (params->split_max > 1u && !(as_uint(p->beta.w) & FEN_PART_ESTIMATE_ONLY)) {
-                const float y = rgb_luminance(p->beta.xyz);
-                const uint k = (uint)fmin(y / params->split_weight, (float)params->split_max);
-                if (k >= 2u) {
-                    p->beta.xyz /= (float)k;
-                    s->pos = (float4)(x, offset_m);
-                    s->normal = (float4)(n, as_float(prim));
-                    s->beta = (float4)(p->beta.xyz, as_float(slot));
-                    s->depth = p->depth;
-                    s->next = 1u;
-                    s->count = k;
-                    s->path_hi = p->path_hi;
-                    p->flags |= FEN_PATH_SPLIT;
+            /* weight windows: the path's weight against its slot's window w, where the slot has one */
+            const float w = guide->params->slots ? guide_window(guide, slot) : 0.0f;
+            uint k = 0u;
+            if (w > 0.0f) {
+                const float ratio = rgb_luminance(p->beta.xyz) * (params->fixed_scale / cam->up.w) / w;
+                if (ratio >= 2.0f) {
+                    k = (uint)fmin(ratio, (float)guide->params->window_split_max);
+                } else if (ratio < 0.5f) {
+                    /* below the window: survives with probability q, weight over q (unbiased) */
+                    const float q = fmax(ratio, guide->params->window_min_survival);
+                    const float4 v = rng_path(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_WINDOW);
+                    if (v.x >= q) {
+                        t->culled += 1;
+                        return leave_vertex(params, p, x, offset_m, ng, next, 0, counters);
+                    }
+                    p->beta.xyz /= q;
                 }
+            } else if (params->split_max > 1u && !(as_uint(p->beta.w) & FEN_PART_ESTIMATE_ONLY)) {
+                /* not the portal complement's estimate-only paths: what they measure needs no precision */
+                const float y = rgb_luminance(p->beta.xyz);
+                k = (uint)fmin(y / params->split_weight, (float)params->split_max);
             }
-            alive = scatter_first(params, guide, cam, p, albedo, n, u, slot, &next, t);
+            if (k >= 2u) {
+                t->split += k;
+                p->beta.xyz /= (float)k;
+                s->pos = (float4)(x, offset_m);
+                s->normal = (float4)(n, as_float(prim));
+                s->beta = (float4)(p->beta.xyz, as_float(slot));
+                s->depth = p->depth;
+                s->next = 1u;
+                s->count = k;
+                s->path_hi = p->path_hi;
+                p->flags |= FEN_PATH_SPLIT;
+            }
+            alive = scatter_first(params, guide, cam, p, albedo, n, u, slot, &next, t, counters);
         }
     }
     return leave_vertex(params, p, x, offset_m, ng, next, alive, counters);
@@ -249,7 +271,7 @@ static inline int next_branch(global const RenderParams* params, const Guide* gu
         const float3 albedo = surface_albedo(sm, sm->materials + sm->prim_material[prim], prim, x);
         const float4 u = rng_path(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_SCATTER);
         float3 next = n;
-        const int alive = scatter_first(params, guide, cam, p, albedo, n, u, as_uint(s->beta.w), &next, t);
+        const int alive = scatter_first(params, guide, cam, p, albedo, n, u, as_uint(s->beta.w), &next, t, counters);
         if (leave_vertex(params, p, x, s->pos.w, n, next, alive, counters)) {
             p->flags |= FEN_PATH_ALIVE;
             return 1;

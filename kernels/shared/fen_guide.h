@@ -40,6 +40,14 @@
 #define FEN_GUIDE_SUMSQ_HI 1
 #define FEN_GUIDE_CONNECTIONS 2
 #define FEN_GUIDE_STATS_WORDS 3
+/* With weight windows (GuideParams.windows_at > 0), a second buffer of sums per leaf, the window
+   statistics, FEN_GUIDE_WINDOW_WORDS fen_u64 each: */
+#define FEN_GUIDE_DELIVERED_LO 0 /* the luminance of the camera contributions a path made after */
+#define FEN_GUIDE_DELIVERED_HI 1 /*   leaving through the leaf, at RenderParams.fixed_scale */
+#define FEN_GUIDE_ARRIVED_LO 2   /* the luminance of the weight that left through the leaf as it */
+#define FEN_GUIDE_ARRIVED_HI 3   /*   arrived at the vertex, at fixed_scale / A_pix (the camera's) */
+#define FEN_GUIDE_VISITS 4       /* paths (or branches) that left through the leaf */
+#define FEN_GUIDE_WINDOW_WORDS 5
 
 /* A child word of a node: FEN_GUIDE_LEAF | global leaf index, or the global index of a node. */
 #define FEN_GUIDE_LEAF 0x80000000u
@@ -62,7 +70,10 @@
  *    its corner in units of 2^-FEN_GUIDE_MAX_DEPTH);
  *  - alias columns of a learned slot, uint2 each: (threshold, alias leaf, counted from the slot's
  *    first leaf); column j gives leaf j to the values below the threshold, its alias to the rest
- *    (host/util/integer_cdf.h). */
+ *    (host/util/integer_cdf.h);
+ *  - with weight windows, one float per slot: the weight (luminance at fixed_scale / A_pix) whose
+ *    expected contribution from this vertex on is the target's; 0 where the slot has not been
+ *    seen enough, FLT_MAX where it was seen and never delivered (lib/guide.h guide_window). */
 
 FEN_NS_BEGIN
 
@@ -78,14 +89,16 @@ typedef struct {
     fen_u32 cells;        /* voxels along each side of the cube (a power of 2) */
     fen_u32 every_vertex; /* 1: a path is guided at every diffuse vertex whose slot is learned; 0: at
                              its first only. Learning is the same either way (the first vertex's record) */
-    fen_u32 pad0;
-    fen_u32 pad1;
-    fen_u32 pad2;
+    fen_u32 windows_at;   /* weight windows: word offset of the per-slot window weights; 0: none */
+    fen_f32 window_min_survival; /* a culled path survives with at least this probability */
+    fen_u32 window_split_max;    /* a path splits into at most this many branches */
 } GuideParams;
 FEN_ASSERT_SIZE(GuideParams, 64);
 FEN_ASSERT_OFFSET(GuideParams, slots, 16);
 FEN_ASSERT_OFFSET(GuideParams, stats_scale, 32);
 FEN_ASSERT_OFFSET(GuideParams, every_vertex, 48);
+FEN_ASSERT_OFFSET(GuideParams, windows_at, 52);
+FEN_ASSERT_OFFSET(GuideParams, window_split_max, 60);
 
 FEN_NS_END
 

@@ -40,6 +40,8 @@
     X(GuideParams, slots)    \
     X(GuideParams, stats_scale) \
     X(GuideParams, every_vertex) \
+    X(GuideParams, windows_at) \
+    X(GuideParams, window_split_max) \
     X(RenderParams, sun_dir) \
     X(RenderParams, path_end) \
     X(RenderParams, seed)    \

@@ -45,7 +45,9 @@
 #define FEN_CTR_CUT_FLUX_HI 12     /*   point at fixed_scale): the light the cap removed */
 #define FEN_CTR_DIFFUSE_VERTICES 13 /* diffuse vertices the paths scattered at (split branches each count) */
 #define FEN_CTR_GUIDED_VERTICES 14  /* ... and of them, those whose direction the guide drew */
-#define FEN_CTR_COUNT 15
+#define FEN_CTR_SPLIT_BRANCHES 15   /* branches made by splitting (--split or weight windows) */
+#define FEN_CTR_WINDOW_CULLS 16     /* paths a weight window's roulette ended */
+#define FEN_CTR_COUNT 17
 
 
 FEN_NS_BEGIN

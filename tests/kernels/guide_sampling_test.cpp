@@ -6,12 +6,14 @@
 // density concentrates, within the memory cap, largest shares first; the device then draws leaves
 // with exactly the realised probabilities (chi-square, p > 1e-3, fixed seed), each point inside
 // its leaf, with the density d(b) = P(b) / A(b) that the path's weight is divided by, and its
-// descent finds the host's leaf for any point; the checkpoint carries the trees. Unbiasedness of the whole render
+// descent finds the host's leaf for any point; the checkpoint carries the trees; the weight windows
+// are the target over each slot's adjoint, from the sums the test writes. Unbiasedness of the whole render
 // with the guide on: Analytic.GuidedFirstBounceConservesEnergy.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "cl/launch.h"
@@ -165,6 +167,61 @@ TEST(GuideSampling, LearnedTableIsTheDocumentedMixtureAndTheDeviceDrawsIt)
     for (int b = 0; b < 64; ++b)
         EXPECT_EQ(again[b].probability, leaves[b].probability);
     expectDrawsFollowTheTable(*ctx, g, 5);
+}
+
+// Writes the weight-window sums (fen_guide.h) of a slot's first leaf: delivered, arrived (whole
+// fixed-point units) and visits.
+void writeWindowSums(ocl::Context& ctx, const FirstBounceGuide& g, std::uint32_t slot, std::uint64_t delivered,
+                     std::uint64_t arrived, std::uint64_t visits)
+{
+    std::vector<std::uint64_t> words(FEN_GUIDE_WINDOW_WORDS, 0);
+    words[FEN_GUIDE_DELIVERED_LO] = delivered;
+    words[FEN_GUIDE_ARRIVED_LO] = arrived;
+    words[FEN_GUIDE_VISITS] = visits;
+    ctx.queue().enqueueWriteBuffer(g.windowStats(), CL_TRUE,
+                                   std::size_t{g.leaves(slot)[0].index} * FEN_GUIDE_WINDOW_WORDS * 8, words.size() * 8,
+                                   words.data());
+}
+
+TEST(GuideSampling, WindowsAreTheTargetOverTheAdjoint)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    GuideOptions o = options();
+    o.window = true;
+    o.windowMinVisits = 100.0;
+    FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
+    // Slot 1 delivers 3 per unit of arriving weight, slot 2 a quarter; slot 3 was seen too few
+    // times for a window; slot 4 often, and never delivered. T = all delivered / all visits.
+    writeWindowSums(*ctx, g, 1, 3000, 1000, 1000);
+    writeWindowSums(*ctx, g, 2, 1000, 4000, 1000);
+    writeWindowSums(*ctx, g, 3, 50, 10, 99);
+    writeWindowSums(*ctx, g, 4, 0, 500, 1000);
+    g.learn();
+    const double target = (3000.0 + 1000.0 + 50.0) / (1000.0 + 1000.0 + 99.0 + 1000.0);
+    const nlohmann::json report = g.report();
+    EXPECT_DOUBLE_EQ(report["window_target"].get<double>(), target);
+    EXPECT_EQ(report["window_slots"].get<int>(), 3);
+    dev::GuideParams p;
+    ctx->queue().enqueueReadBuffer(g.params(), CL_TRUE, 0, sizeof p, &p);
+    ASSERT_GT(p.windows_at, 0u);
+    EXPECT_EQ(p.window_split_max, 16u);
+    std::vector<float> w(6);
+    ctx->queue().enqueueReadBuffer(g.tables(), CL_TRUE, std::size_t{p.windows_at} * 4, w.size() * 4, w.data());
+    EXPECT_EQ(w[0], 0.0f);  // never seen
+    EXPECT_FLOAT_EQ(w[1], static_cast<float>(target / 3.0));
+    EXPECT_FLOAT_EQ(w[2], static_cast<float>(target * 4.0));
+    EXPECT_EQ(w[3], 0.0f);
+    EXPECT_EQ(w[4], std::numeric_limits<float>::max());
+    // The totals survive a checkpoint: the reloaded guide makes the same windows.
+    StateWriter out;
+    g.save(out);
+    FirstBounceGuide h(*ctx, o, glm::dvec3(0.0), 8.0);
+    StateReader in(out.bytes(), "test state");
+    h.load(in);
+    EXPECT_EQ(h.report()["window_target"], report["window_target"]);
+    std::vector<float> v(6);
+    ctx->queue().enqueueReadBuffer(h.tables(), CL_TRUE, std::size_t{p.windows_at} * 4, v.size() * 4, v.data());
+    EXPECT_EQ(v, w);
 }
 
 TEST(GuideSampling, TreesRefineWhereTheDensityConcentratesAndTheDeviceFollows)
@@ -393,9 +450,14 @@ TEST(GuideSampling, StateThatDoesNotDescribeTreesIsAnErrorNamingTheField)
     EXPECT_NE(attempt(good, {3}, {1, 1, 1, 1}, {}).find("guide.shape"), std::string::npos) << "a shape cut short";
     std::vector<std::uint64_t> leafy(4, 0);
     EXPECT_NE(attempt(good, {3}, leafy, {1.0, 1.0}).find("guide.leaves"), std::string::npos) << "3 leaves missing";
-    EXPECT_NE(attempt(good, {3}, leafy, {1.0, -1.0, 0, 0, 0, 0, 0, 0}).find("guide.leaves"), std::string::npos);
+    // five totals a leaf (S, contributions, and the weight windows' delivered, arrived, visits)
+    std::vector<double> totals(20, 0.0);
+    totals[0] = totals[1] = 1.0;
+    std::vector<double> negative = totals;
+    negative[8] = -1.0;  // the second leaf's windows' arrived
+    EXPECT_NE(attempt(good, {3}, leafy, negative).find("guide.leaves"), std::string::npos);
     // The guide is still whole after the failures: the last good state loads.
-    EXPECT_EQ(attempt(good, {3}, leafy, {1.0, 1.0, 0, 0, 0, 0, 0, 0}), "");
+    EXPECT_EQ(attempt(good, {3}, leafy, totals), "");
     EXPECT_EQ(g.leaves(3).size(), 4u);
 }
 

@@ -320,6 +320,23 @@ TEST(Analytic, GuidedEveryVertexConservesEnergy)
     EXPECT_LE(r.counts.guidedVertices, r.counts.diffuseVertices);
 }
 
+TEST(Analytic, WeightWindowsConserveEnergy)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Weight windows at the first diffuse vertex, learned with the guide: paths whose expected
+    // contribution is far above the target split, those far below are culled (surviving with at
+    // least 1/4, their weight over the odds). Both must happen, and the mean must not move.
+    const auto r = integratingSphere(*ctx, 4u << 20, [](RenderSettings& s) {
+        guided(false)(s);
+        s.emission.adaptive.guide.window = true;
+        s.emission.adaptive.guide.windowMinVisits = 16.0;
+        s.emission.adaptive.guide.windowMinSurvival = 0.25;
+    }, "integrating sphere, weight windows");
+    EXPECT_GT(r.counts.splitBranches, r.paths / 100);
+    EXPECT_GT(r.counts.windowCulls, r.paths / 100);
+    EXPECT_GT(r.emission["guide"].value("window_slots", 0), 0);
+}
+
 TEST(Analytic, SkySeenDirectlyAndThroughGlass)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);

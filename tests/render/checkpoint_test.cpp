@@ -24,6 +24,7 @@ struct Case {
     EmissionMethod method;
     EmissionMethod base;
     bool guide = false;
+    bool window = false;
 };
 
 RenderResult renderCase(ocl::Context& ctx, const Case& c, const std::string& checkpoint, const std::string& resume,
@@ -38,6 +39,9 @@ RenderResult renderCase(ocl::Context& ctx, const Case& c, const std::string& che
     s.emission.adaptive.guide.enabled = c.guide;
     s.emission.adaptive.guide.minConnections = 4.0;
     s.emission.adaptive.guide.minGain = 1.0;  // tables in use wherever anything was seen
+    s.emission.adaptive.guide.window = c.window;
+    s.emission.adaptive.guide.windowMinVisits = 16.0;
+    s.emission.adaptive.guide.windowMinSurvival = 0.25;
     s.paths = 1u << 20;
     s.seed = seed;
     s.rois = {Roi{8, 8, 40, 28}};
@@ -88,6 +92,13 @@ TEST_P(Checkpoint, ResumedRenderIsBitIdentical)
     EXPECT_EQ(rest.counts.cutFlux, whole.counts.cutFlux);
     EXPECT_EQ(rest.counts.diffuseVertices, whole.counts.diffuseVertices);
     EXPECT_EQ(rest.counts.guidedVertices, whole.counts.guidedVertices);
+    EXPECT_EQ(rest.counts.splitBranches, whole.counts.splitBranches);
+    EXPECT_EQ(rest.counts.windowCulls, whole.counts.windowCulls);
+    if (c.window) {
+        EXPECT_GT(whole.counts.splitBranches, 0u);
+        EXPECT_EQ(rest.emission["guide"]["window_target"], whole.emission["guide"]["window_target"]);
+        EXPECT_EQ(rest.emission["guide"]["window_slots"], whole.emission["guide"]["window_slots"]);
+    }
     if (c.method == EmissionMethod::Adaptive) {
         EXPECT_EQ(rest.emission["checksum"], whole.emission["checksum"]);
         EXPECT_EQ(rest.emission["cells"], whole.emission["cells"]);
@@ -105,7 +116,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"portal", "room.gltf", EmissionMethod::Portal, EmissionMethod::Uniform},
                       Case{"adaptive", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform},
                       Case{"adaptive_portal", "inner_room.gltf", EmissionMethod::Adaptive, EmissionMethod::Portal},
-                      Case{"adaptive_guide", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, true}),
+                      Case{"adaptive_guide", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, true},
+                      Case{"adaptive_window", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, true,
+                           true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 TEST(Checkpoint, AnotherRenderIsRefused)

@@ -2,7 +2,7 @@
 // bit-identical renders for the same seed: image, per-batch statistics, counters and, for the
 // adaptive strategy, the learned grid -- for every strategy, with glass in the scene, with
 // Russian roulette from the first interaction or later, with paths split at their first hit, with
-// the first bounce guided. So the faster of the two can never be
+// the first bounce guided, with weight windows. So the faster of the two can never be
 // the wrong one.
 #include <gtest/gtest.h>
 
@@ -26,6 +26,7 @@ struct Case {
     double splitWeight = 1.0;
     bool guide = false;
     bool guideEveryVertex = false;
+    bool window = false;
 };
 
 RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
@@ -44,6 +45,9 @@ RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
     s.splitWeight = c.splitWeight;
     s.emission.adaptive.guide.enabled = c.guide;
     s.emission.adaptive.guide.everyVertex = c.guideEveryVertex;
+    s.emission.adaptive.guide.window = c.window;
+    s.emission.adaptive.guide.windowMinVisits = 16.0;
+    s.emission.adaptive.guide.windowMinSurvival = 0.25;  // some culled, some split
     s.emission.adaptive.guide.minConnections = 4.0;
     s.emission.adaptive.guide.minGain = 1.0;  // tables in use wherever anything was seen
     s.rois = {Roi{0, 0, 48, 36}};
@@ -70,6 +74,12 @@ TEST_P(FusedKernel, BitIdenticalToTheWavefront)
     EXPECT_EQ(w.counts.maxBounceCuts, f.counts.maxBounceCuts);
     EXPECT_EQ(w.counts.diffuseVertices, f.counts.diffuseVertices);
     EXPECT_EQ(w.counts.guidedVertices, f.counts.guidedVertices);
+    EXPECT_EQ(w.counts.splitBranches, f.counts.splitBranches);
+    EXPECT_EQ(w.counts.windowCulls, f.counts.windowCulls);
+    if (c.window) {
+        EXPECT_GT(f.counts.splitBranches, 0u) << "the windows split nothing";
+        EXPECT_GT(f.counts.windowCulls, 0u) << "the windows culled nothing";
+    }
     EXPECT_EQ(w.counts.badContributions, 0u);
     EXPECT_EQ(f.counts.badContributions, 0u);
     EXPECT_EQ(w.emission.value("checksum", 0ull), f.emission.value("checksum", 0ull));
@@ -108,7 +118,10 @@ INSTANTIATE_TEST_SUITE_P(
                            16, 1.0, true},
                       // ... and at every diffuse vertex
                       Case{"adaptive_guide_every_vertex", "room.gltf", EmissionMethod::Adaptive,
-                           EmissionMethod::Uniform, 3, 1, 1.0, true, true}),
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, true},
+                      // ... and with weight windows splitting and culling at first vertices
+                      Case{"adaptive_guide_window", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, 3,
+                           1, 1.0, true, false, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""Weight windows (--adaptive-window) against adaptive as it is by default, at equal time.
+
+For each scene and seed, the variants run one after another (interleaved, so that a busy machine
+slows them alike), adaptive emission, the same seed, the same time; efficiency of a variant =
+(noise_default^2 * seconds_default) / (noise^2 * seconds), noise = the JSON's
+noise_std_err_cd_m2 (the per-pixel standard error over the ROI). Prints one line per render and
+the median efficiency per scene and variant; every line also goes to --data.
+
+    python3 scripts/window_study.py --scenes house,house_snow,courtyard --seeds 1,2,3 \\
+        --width 160 --time 20 --out out/window --data docs/results/window_data.txt
+
+Variants (--variants, comma-separated names): off (the default: no windows), split (windows that
+split and never cull), cull50 (also cull, survival at least 0.5), cull05 (at least 0.05).
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+VARIANTS = {
+    "off": [],
+    "split": ["--adaptive-window", "on"],
+    "split64": ["--adaptive-window", "on", "--adaptive-window-split", "64"],
+    "cull50": ["--adaptive-window", "on", "--adaptive-window-survival", "0.5"],
+    "cull05": ["--adaptive-window", "on", "--adaptive-window-survival", "0.05"],
+}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--fenestra", default="build/fenestra")
+    ap.add_argument("--scenes", default="house")
+    ap.add_argument("--seeds", default="1,2,3")
+    ap.add_argument("--variants", default="off,split,cull50,cull05")
+    ap.add_argument("--width", type=int, default=160)
+    ap.add_argument("--time", type=float, default=20.0)
+    ap.add_argument("--out", default="out/window")
+    ap.add_argument("--data", default=None, help="append every line to this file")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    variants = a.variants.split(",")
+    for v in variants:
+        if v not in VARIANTS:
+            sys.exit(f"window_study.py: unknown variant '{v}' (known: {', '.join(VARIANTS)})")
+    data = open(a.data, "a") if a.data else None
+    eff = {}
+    for scene in a.scenes.split(","):
+        for seed in a.seeds.split(","):
+            runs = {}
+            for v in variants:
+                stem = os.path.join(a.out, f"{scene}_{v}_{seed}")
+                cmd = [a.fenestra, "render", f"scenes/{scene}.gltf", "--method", "adaptive", "--seed", seed,
+                       "--width", str(a.width), "--time", str(a.time), "--no-progress", "--out", stem + ".exr"]
+                subprocess.run(cmd + VARIANTS[v], check=True, stdout=subprocess.DEVNULL)
+                j = json.load(open(stem + ".json"))
+                c = j["counters"]
+                runs[v] = (j["noise_std_err_cd_m2"], j["seconds"]["render"])
+                line = (f"{scene} seed {seed} {v:7s} noise {j['noise_std_err_cd_m2']:8.3f} "
+                        f"mean {j['mean_luminance_cd_m2']:9.3f} +- {j['mean_std_err_cd_m2']:.3f} "
+                        f"top1 {j['noise_top1_share']:.2f} paths {j['paths'] / 1e6:7.1f}M "
+                        f"render {j['seconds']['render']:5.1f}s split {c['split_branches'] / 1e6:6.1f}M "
+                        f"culls {c['window_culls'] / 1e6:6.1f}M "
+                        f"window_slots {j['emission'].get('guide', {}).get('window_slots', 0)}")
+                if "off" in runs and v != "off":
+                    n0, t0 = runs["off"]
+                    n, t = runs[v]
+                    e = (n0 * n0 * t0) / (n * n * t)
+                    eff.setdefault((scene, v), []).append(e)
+                    line += f" efficiency {e:.2f}"
+                print(line, flush=True)
+                if data:
+                    data.write(line + "\n")
+                    data.flush()
+    for (scene, v), es in sorted(eff.items()):
+        line = f"{scene} {v}: median efficiency {statistics.median(es):.2f} ({', '.join(f'{e:.2f}' for e in es)})"
+        print(line)
+        if data:
+            data.write(line + "\n")
+
+
+if __name__ == "__main__":
+    main()
