@@ -8,10 +8,12 @@ noise_std_err_cd_m2 (the per-pixel standard error over the ROI). Prints one line
 the median efficiency per scene and variant; every line also goes to --data.
 
     python3 scripts/window_study.py --scenes house,house_snow,courtyard --seeds 1,2,3 \\
-        --width 160 --time 20 --out out/window --data docs/results/window_data.txt
+        --variants off,mean,mean_cull50,mean_cull05 --width 160 --time 20 --out out/window \\
+        --data docs/results/window_data.txt
 
-Variants (--variants, comma-separated names): off (the default: no windows), split (windows that
-split and never cull), cull50 (also cull, survival at least 0.5), cull05 (at least 0.05).
+Variants (--variants, comma-separated names): off (the default: no windows); mean and moment (the
+two rules' windows, splitting and never culling); mean_cull50, moment_cull50 (also culling, the
+survival at least 0.5) and mean_cull05, moment_cull05 (at least 0.05).
 """
 import argparse
 import json
@@ -20,13 +22,11 @@ import statistics
 import subprocess
 import sys
 
-VARIANTS = {
-    "off": [],
-    "split": ["--adaptive-window", "on"],
-    "split64": ["--adaptive-window", "on", "--adaptive-window-split", "64"],
-    "cull50": ["--adaptive-window", "on", "--adaptive-window-survival", "0.5"],
-    "cull05": ["--adaptive-window", "on", "--adaptive-window-survival", "0.05"],
-}
+VARIANTS = {"off": []}
+for rule in ("mean", "moment"):
+    VARIANTS[rule] = ["--adaptive-window", rule]  # split, never cull (the default survival, 1)
+    VARIANTS[rule + "_cull50"] = ["--adaptive-window", rule, "--adaptive-window-survival", "0.5"]
+    VARIANTS[rule + "_cull05"] = ["--adaptive-window", rule, "--adaptive-window-survival", "0.05"]
 
 
 def main():
@@ -34,7 +34,7 @@ def main():
     ap.add_argument("--fenestra", default="build/fenestra")
     ap.add_argument("--scenes", default="house")
     ap.add_argument("--seeds", default="1,2,3")
-    ap.add_argument("--variants", default="off,split,cull50,cull05")
+    ap.add_argument("--variants", default="off,mean,moment,moment_cull50")
     ap.add_argument("--width", type=int, default=160)
     ap.add_argument("--time", type=float, default=20.0)
     ap.add_argument("--out", default="out/window")

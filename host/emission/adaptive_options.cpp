@@ -65,11 +65,11 @@ public:
         render.add_option("--adaptive-guide-vertices", guideVertices_,
                           "With adaptive --adaptive-guide on: the diffuse vertices the guide draws at, first (default) or every");
         render.add_option("--adaptive-window", window_,
-                          "With adaptive --adaptive-guide on: weight windows -- split or cull a path at its first diffuse vertex by its expected contribution, on or off (default off)");
+                          "With adaptive --adaptive-guide on: weight windows -- split or cull a path at its first diffuse vertex by its expected contribution (mean) or the root of its second moment (moment), or off (default)");
         render.add_option("--adaptive-window-split", windowSplit_,
-                          "With adaptive --adaptive-window on: most branches a path splits into, 2..1024 (default 16)");
+                          "With adaptive --adaptive-window mean|moment: most branches a path splits into, 2..1024 (default 16)");
         render.add_option("--adaptive-window-survival", windowSurvival_,
-                          "With adaptive --adaptive-window on: least probability a path below its window survives with, (0, 1]; 1 (default): never culled");
+                          "With adaptive --adaptive-window mean|moment: least probability a path below its window survives with, (0, 1]; 1 (default): never culled");
         render.add_option("--adaptive-guide-memory", guideMemory_,
                           "With adaptive --adaptive-guide on: MiB of device memory for the guide's trees (default 256)");
         render.add_option("--adaptive-target", target_,
@@ -123,14 +123,18 @@ public:
         a.guide.memoryMiB = guideMemory_.value_or(a.guide.memoryMiB);
         if (guideVertices_)
             a.guide.everyVertex = choice("--adaptive-guide-vertices", *guideVertices_, "every", "first");
-        if (window_)
-            a.guide.window = choice("--adaptive-window", *window_, "on", "off");
+        if (window_) {
+            if (*window_ != "off" && *window_ != "mean" && *window_ != "moment")
+                throw Error(cat("--adaptive-window '", printable(*window_, 40), "': expected off, mean or moment"));
+            a.guide.window = *window_ != "off";
+            a.guide.windowRule = *window_ == "moment" ? GuideOptions::WindowRule::Moment : GuideOptions::WindowRule::Mean;
+        }
         a.guide.windowSplitMax = windowSplit_.value_or(a.guide.windowSplitMax);
         a.guide.windowMinSurvival = windowSurvival_.value_or(a.guide.windowMinSurvival);
         if ((windowSplit_ || windowSurvival_) && !a.guide.window)
-            throw Error("--adaptive-window-split and --adaptive-window-survival apply with --adaptive-window on");
+            throw Error("--adaptive-window-split and --adaptive-window-survival apply with --adaptive-window mean or moment");
         if (a.guide.window && !a.guide.enabled)
-            throw Error("--adaptive-window on: needs --adaptive-guide on (the windows are learned with the guide)");
+            throw Error("--adaptive-window: needs --adaptive-guide on (the windows are learned with the guide)");
         validateAdaptiveOptions(a);
     }
 
@@ -203,6 +207,7 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
             {"guide_memory_mib", a.guide.memoryMiB},
             {"guide_every_vertex", a.guide.everyVertex},
             {"window", a.guide.window},
+            {"window_rule", static_cast<int>(a.guide.windowRule)},
             {"window_split_max", a.guide.windowSplitMax},
             {"window_min_survival", a.guide.windowMinSurvival}};
 }

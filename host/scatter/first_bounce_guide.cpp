@@ -28,7 +28,7 @@ static_assert(FEN_GUIDE_MAX_DEPTH <= 14, "a leaf's corner has 14 bits per axis")
 // Device bytes per leaf: its statistics, its entry, up to two alias columns, a third of a node.
 constexpr double kBytesPerLeaf = 8.0 * FEN_GUIDE_STATS_WORDS + 8.0 + 16.0 + 16.0 / 3.0;
 constexpr double kMiB = 1024.0 * 1024.0;
-constexpr std::size_t kSavedPerLeaf = 5;  // a leaf's totals in a checkpoint (save(), load())
+constexpr std::size_t kSavedPerLeaf = 7;  // a leaf's totals in a checkpoint (save(), load())
 
 // Voxels along each side of the lattice cube (side 2R): the power of 2 at or above 2 voxelsAcross.
 std::uint32_t latticeCells(int voxelsAcross)
@@ -197,9 +197,9 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
 
 static_assert(FEN_GUIDE_SUMSQ_LO == 0 && FEN_GUIDE_CONNECTIONS == 2 && FEN_GUIDE_STATS_WORDS == 3,
               "a leaf's statistics as summed() describes them: a 128-bit sum and a count");
-static_assert(FEN_GUIDE_DELIVERED_LO == 0 && FEN_GUIDE_ARRIVED_LO == 2 && FEN_GUIDE_VISITS == 4 &&
-                  FEN_GUIDE_WINDOW_WORDS == 5,
-              "a leaf's window statistics as windowSummed() describes them: two 128-bit sums and a count");
+static_assert(FEN_GUIDE_DELIVERED_LO == 0 && FEN_GUIDE_DELIVERED_SQ_LO == 2 && FEN_GUIDE_ARRIVED_LO == 4 &&
+                  FEN_GUIDE_ARRIVED_SQ_LO == 6 && FEN_GUIDE_VISITS == 8 && FEN_GUIDE_WINDOW_WORDS == 9,
+              "a leaf's window statistics as windowSummed() describes them: four 128-bit sums and a count");
 
 void FirstBounceGuide::clearStats()
 {
@@ -393,12 +393,20 @@ void FirstBounceGuide::rebuild()
         throw Error("guide tables: beyond the capacity they were sized for");  // refine() keeps within
 }
 
-// The weight windows (fen_guide.h): the adjoint J(slot) = delivered / arrived -- what a unit of
-// weight arriving at a first vertex there delivers from then on, on average -- and the target
-// T = delivered / visits over all slots -- what a path (or branch) leaving a first vertex delivers
-// on average; the window weight T / J is the arriving weight expected to deliver T. A slot seen
-// fewer than windowMinVisits times has none (0: the fixed rules); one seen that often that never
-// delivered gets FLT_MAX (every path there culled down to windowMinSurvival).
+// The weight windows (fen_guide.h), per slot from its leaves' totals (sums at the window scale S, the
+// squares at S^2; a = a path's arriving luminance over A_pix, C a contribution it made after):
+//  - rule Mean: the adjoint J = sum C / sum a -- what a unit of arriving weight delivers from
+//    then on, on average -- and the target T = sum C / visits over all slots; w = T / J, the
+//    arriving weight expected to deliver T;
+//  - rule Moment: M = sum C^2 / sum a^2 -- the second moment of what a unit of arriving weight
+//    delivers, contribution by contribution (each lands in its own pixel, so it is what the
+//    image's variance adds up) -- and tau^2 = sum C^2 / visits; w = tau / sqrt(M), the arriving
+//    weight whose root second moment is the average path's: splitting and culling then even out
+//    what paths add to the variance, not to the mean (a path that rarely delivers a great deal is
+//    not culled for its small mean).
+// w comes out in the units of a, which the device compares a path's with. A slot seen fewer than windowMinVisits times has
+// none (0: the fixed rules); one seen that often that never delivered gets FLT_MAX (every path
+// there culled down to windowMinSurvival).
 void FirstBounceGuide::rebuildWindows()
 {
     windowWords_.clear();
@@ -406,12 +414,13 @@ void FirstBounceGuide::rebuildWindows()
     windowTarget_ = 0.0;
     if (!deviceParams_.windows_at)
         return;
+    const bool moment = opt_.windowRule == GuideOptions::WindowRule::Moment;
     std::vector<double> delivered(trees_.size(), 0.0), arrived(trees_.size(), 0.0), visits(trees_.size(), 0.0);
     double allDelivered = 0.0, allVisits = 0.0;
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         for (const Leaf& l : trees_[s].leaves) {
-            delivered[s] += l.delivered;
-            arrived[s] += l.arrived;
+            delivered[s] += moment ? l.deliveredSq : l.delivered;
+            arrived[s] += moment ? l.arrivedSq : l.arrived;
             visits[s] += l.visits;
         }
         allDelivered += delivered[s];
@@ -420,11 +429,12 @@ void FirstBounceGuide::rebuildWindows()
     windowWords_.assign(trees_.size(), 0u);
     if (!(allDelivered > 0.0))
         return;
-    windowTarget_ = allDelivered / allVisits;
+    windowTarget_ = allDelivered / allVisits;  // T S, or tau^2 S^2
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         if (visits[s] < opt_.windowMinVisits || !(arrived[s] > 0.0))
             continue;
-        const double w = delivered[s] > 0.0 ? windowTarget_ * arrived[s] / delivered[s] : 0.0;
+        const double ratio = delivered[s] > 0.0 ? windowTarget_ * arrived[s] / delivered[s] : 0.0;
+        const double w = moment ? std::sqrt(ratio) : ratio;
         windowWords_[s] = floatBits(w > 0.0 && w < 3e38 ? static_cast<float>(w) : std::numeric_limits<float>::max());
         ++windowSlots_;
     }
@@ -567,9 +577,11 @@ void FirstBounceGuide::learn()
             l.sumSq += pass[s][i].sumSq;
             l.connections += pass[s][i].connections;
             if (ww) {
-                // the window's sums: ratios of them are what it uses, so their units never matter
+                // the window's sums, at their scale (the squares at its square): rebuildWindows()
                 l.delivered += fixed128(ww + FEN_GUIDE_DELIVERED_LO);
+                l.deliveredSq += fixed128(ww + FEN_GUIDE_DELIVERED_SQ_LO);
                 l.arrived += fixed128(ww + FEN_GUIDE_ARRIVED_LO);
+                l.arrivedSq += fixed128(ww + FEN_GUIDE_ARRIVED_SQ_LO);
                 l.visits += static_cast<double>(ww[FEN_GUIDE_VISITS]);
                 ww += FEN_GUIDE_WINDOW_WORDS;
             }
@@ -625,7 +637,8 @@ void FirstBounceGuide::save(StateWriter& w) const
         };
         walk(0);
         for (const Leaf& l : t.leaves)
-            leaves.insert(leaves.end(), {l.sumSq, l.connections, l.delivered, l.arrived, l.visits});
+            leaves.insert(leaves.end(), {l.sumSq, l.connections, l.delivered, l.deliveredSq, l.arrived, l.arrivedSq,
+                                         l.visits});
     }
     w.u64s("guide.space", spaceShape());
     w.u64s("guide.slots", slots);
@@ -706,7 +719,8 @@ void FirstBounceGuide::load(StateReader& r)
                 } else {
                     if (leafAt + kSavedPerLeaf > leaves.size())
                         r.fail("guide.leaves", "fewer leaves than the trees' shapes hold");
-                    double* totals[kSavedPerLeaf] = {&l.sumSq, &l.connections, &l.delivered, &l.arrived, &l.visits};
+                    double* totals[kSavedPerLeaf] = {&l.sumSq,    &l.connections, &l.delivered, &l.deliveredSq,
+                                                     &l.arrived, &l.arrivedSq,   &l.visits};
                     for (double* v : totals) {
                         *v = r.finite("guide.leaves", leaves[leafAt++]);
                         if (*v < 0.0)
@@ -791,7 +805,7 @@ nlohmann::json FirstBounceGuide::report() const
             {"splits_deferred", deferredSplits_},
             {"connections", connections},
             {"checksum", checksum.h},
-            {"window", opt_.window},
+            {"window", opt_.window ? (opt_.windowRule == GuideOptions::WindowRule::Moment ? "moment" : "mean") : "off"},
             {"window_slots", windowSlots_},
             {"window_target", windowTarget_},
             {"window_split_max", opt_.windowSplitMax},

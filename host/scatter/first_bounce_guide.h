@@ -91,12 +91,16 @@ struct GuideOptions {
     // draw, more than the variance it saves (docs/results/guiding.md, "Every vertex").
     bool everyVertex = false;
     // Weight windows (roulette and splitting from the learned adjoint): at a path's first diffuse
-    // vertex, a weight whose expected contribution from there on, Y(beta) J(slot), is at least
-    // twice the target T (the mean over all paths) splits into min(floor(ratio), windowSplitMax)
-    // branches; one below half of it is culled with probability 1 - max(ratio, windowMinSurvival),
-    // the survivors' weight over their probability. J and T are learned on the guide's passes;
-    // a slot with fewer than windowMinVisits visits has no window (the fixed rules apply there).
+    // vertex, the ratio of its weight Y(beta) to its slot's window weight w -- with rule Mean, the
+    // weight whose expected contribution from there on is the target (the mean over all paths);
+    // with rule Moment, the weight whose root second moment of contributions is the target's (the
+    // root mean square over all paths) -- decides: a ratio of 2 or more splits the path into
+    // min(floor(ratio), windowSplitMax) branches; one below 1/2 survives with probability
+    // max(ratio, windowMinSurvival), its weight over that. Learned on the guide's passes; a slot
+    // with fewer than windowMinVisits visits has no window (the fixed rules apply there).
+    enum class WindowRule { Mean, Moment };
     bool window = false;
+    WindowRule windowRule = WindowRule::Mean;
     int windowSplitMax = 16;
     double windowMinSurvival = 1.0;  // 1: never culled (culling lost where measured: docs/results/guiding.md)
     double windowMinVisits = 256.0;
@@ -121,9 +125,9 @@ public:
     const cl::Buffer& stats() const { return stats_; }
     const cl::Buffer& windowStats() const { return windowStats_; }  // with weight windows (fen_guide.h)
     // The statistics as a team sums them (team/shared_sums.h): per leaf, a 128-bit sum and a count;
-    // and the weight windows' per leaf, two 128-bit sums and a count (none without windows).
+    // and the weight windows' per leaf, four 128-bit sums and a count (none without windows).
     SummedBuffer summed() const { return {&stats_, opt_.enabled ? leafCount_ : 0, {2, 1}}; }
-    SummedBuffer windowSummed() const { return {&windowStats_, deviceParams_.windows_at ? leafCount_ : 0, {2, 2, 1}}; }
+    SummedBuffer windowSummed() const { return {&windowStats_, deviceParams_.windows_at ? leafCount_ : 0, {2, 2, 2, 2, 1}}; }
     std::size_t deviceBytes() const { return deviceBytes_; }
 
     // After a pass: statistics into the totals, trees refined, new tables up, statistics cleared.
@@ -154,11 +158,12 @@ private:
     struct Leaf {
         double sumSq = 0.0, connections = 0.0;  // S(b) and contributions, over all passes
         // with weight windows, over all passes: the luminance delivered after leaving through the
-        // leaf, the weight's luminance as it arrived at the vertex, and how many left (fen_guide.h)
-        double delivered = 0.0, arrived = 0.0, visits = 0.0;
+        // leaf and its square, the weight's luminance over A_pix as it arrived at the vertex and its
+        // square, and how many left (fen_guide.h)
+        double delivered = 0.0, deliveredSq = 0.0, arrived = 0.0, arrivedSq = 0.0, visits = 0.0;
         void scaleTotals(double f)
         {
-            sumSq *= f, connections *= f, delivered *= f, arrived *= f, visits *= f;
+            sumSq *= f, connections *= f, delivered *= f, deliveredSq *= f, arrived *= f, arrivedSq *= f, visits *= f;
         }
         float density = 1.0f;                   // d(b) the last tables drew it with (1: the cosine)
         std::uint32_t x0 = 0, y0 = 0, depth = 0;  // corner in 2^-FEN_GUIDE_MAX_DEPTH units

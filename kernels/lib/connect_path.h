@@ -11,7 +11,7 @@
  * relative target, DESIGN.md §3.3): steering only, never the image. A connection that carries a
  * first-bounce guide record (c->guide.x > 0) adds its luminance to that box's statistics in
  * guide_stats (lib/guide.h), whatever the strategy, and with weight windows (c->guide.z > 0) to its
- * window statistics in window_stats. Requires lib/bvh_traverse.h
+ * window statistics in window_stats (c->guide.z: their scale). Requires lib/bvh_traverse.h
  * (FEN_BVH_WIDTH).
  */
 #ifndef FEN_CONNECT_PATH_H
@@ -37,7 +37,7 @@ static inline void connect_path(global const RenderParams* params, const Connect
         const float3 value = c->value.xyz * trans;
         if (c->guide.x > 0.0f)
             guide_record(guide_stats, window_stats, c->guide.x, as_uint(c->guide.y), rgb_luminance(value),
-                         c->guide.z > 0.0f ? params->fixed_scale : 0.0f, counters);
+                         c->guide.z, counters);
 #ifdef FEN_EMISSION_STATS
         const uint part = as_uint(c->value.w);
         if (!(part & FEN_PART_ESTIMATE_ONLY))

@@ -110,38 +110,41 @@ static inline float2 guide_sample(const Guide* g, uint4 r, RngBlock bits, uint* 
 
 /* Adds a camera contribution of luminance y, made after the path left a guided vertex (its record
    g, key), to that leaf's statistics: (y g)^2, g already holding the fixed-point scale; and with
-   weight windows (delivered_scale > 0) y itself at that scale to the leaf's window statistics, for
-   the adjoint the windows follow. */
+   weight windows (delivered_scale > 0: the window statistics' scale) y and y^2 at that scale to the
+   leaf's window statistics, for the adjoint the windows follow. */
 static inline void guide_record(volatile global ulong* guide_stats, volatile global ulong* window_stats, float g,
                                 uint key, float y, float delivered_scale, volatile global ulong* counters)
 {
     volatile global ulong* s = guide_stats + FEN_GUIDE_STATS_WORDS * (ulong)key;
     const float v = y * g;
+    volatile global ulong* w = window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)key;
+    const float c = y * delivered_scale;
     if (!fixed_add128(s + FEN_GUIDE_SUMSQ_LO, v * v) ||
         (delivered_scale > 0.0f &&
-         !fixed_add128(window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)key + FEN_GUIDE_DELIVERED_LO, y * delivered_scale))) {
+         (!fixed_add128(w + FEN_GUIDE_DELIVERED_LO, c) || !fixed_add128(w + FEN_GUIDE_DELIVERED_SQ_LO, c * c)))) {
         counter_add(counters, FEN_CTR_STATS_OVERFLOWS, 1);
         return;
     }
     atom_inc(s + FEN_GUIDE_CONNECTIONS);
 }
 
-/* Weight windows (DESIGN.md §3.4): the window weight of a slot -- the luminance of weight, in units
-   of fixed_scale / A_pix, that is expected to deliver the target contribution from a vertex there
-   on (the host's T / J(slot)) -- or 0 where there is none (no windows, or the slot not seen enough;
-   the fixed rules then apply). */
+/* Weight windows (DESIGN.md §3.4): the window weight of a slot -- the luminance of weight over A_pix
+   that is expected to deliver the target from a vertex there on (host/scatter/first_bounce_guide.cpp
+   rebuildWindows) -- or 0 where there is none (no windows, or the slot not seen enough; the fixed
+   rules then apply). */
 static inline float guide_window(const Guide* g, uint slot)
 {
     return g->params->windows_at ? as_float(g->tables[g->params->windows_at + slot]) : 0.0f;
 }
 
-/* With weight windows: a path (or branch) of arrival luminance y_units (fixed_scale / A_pix) leaves
-   its first diffuse vertex through leaf key -- the denominators of the adjoint J = delivered /
-   arrived and of the target T = delivered / visits. */
-static inline void guide_arrive(const Guide* g, uint key, float y_units, volatile global ulong* counters)
+/* With weight windows: a path (or branch) whose weight arrived with luminance over A_pix a (at the
+   window statistics' scale) leaves its first diffuse vertex through leaf key -- the denominators of
+   the adjoint (delivered / arrived, or its second moment, delivered^2 / arrived^2) and of the
+   target (per visit). */
+static inline void guide_arrive(const Guide* g, uint key, float a, volatile global ulong* counters)
 {
     volatile global ulong* s = g->window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)key;
-    if (!fixed_add128(s + FEN_GUIDE_ARRIVED_LO, y_units)) {
+    if (!fixed_add128(s + FEN_GUIDE_ARRIVED_LO, a) || !fixed_add128(s + FEN_GUIDE_ARRIVED_SQ_LO, a * a)) {
         counter_add(counters, FEN_CTR_STATS_OVERFLOWS, 1);
         return;
     }

@@ -109,7 +109,8 @@ static inline int scatter_first(global const RenderParams* params, const Guide* 
         key = guide_leaf(guide, r, sq);
     }
     if (guide->params->windows_at)
-        guide_arrive(guide, key, rgb_luminance(p->beta.xyz) * (params->fixed_scale / cam->up.w), counters);
+        guide_arrive(guide, key, rgb_luminance(p->beta.xyz) * (params->fixed_scale * FEN_GUIDE_WINDOW_SCALE / cam->up.w),
+                     counters);
     const int alive = scatter_through(params, p, albedo, n, u, sq, d, next);
     const float y = rgb_luminance(p->beta.xyz);
     p->org.w = alive && y > 0.0f ? guide->params->stats_scale * cam->up.w / (y * d) : 0.0f;
@@ -202,7 +203,10 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
                     c->org = (float4)(o, as_float(pixel));
                     c->to_cam = (float4)(cam->position.xyz - o, 0.0f);
                     c->value = (float4)(value, p->beta.w); /* the emission cell */
-                    c->guide = (float4)(p->org.w, p->dir.w, guide->params->windows_at ? 1.0f : 0.0f, 0.0f);
+                    /* z: the window statistics' scale, 0 without windows */
+                    c->guide = (float4)(p->org.w, p->dir.w,
+                                        guide->params->windows_at ? params->fixed_scale * FEN_GUIDE_WINDOW_SCALE : 0.0f,
+                                        0.0f);
                 }
             }
         }
@@ -216,7 +220,8 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
             const float w = guide->params->slots ? guide_window(guide, slot) : 0.0f;
             uint k = 0u;
             if (w > 0.0f) {
-                const float ratio = rgb_luminance(p->beta.xyz) * (params->fixed_scale / cam->up.w) / w;
+                const float ratio =
+                    rgb_luminance(p->beta.xyz) * (params->fixed_scale * FEN_GUIDE_WINDOW_SCALE / cam->up.w) / w;
                 if (ratio >= 2.0f) {
                     k = (uint)fmin(ratio, (float)guide->params->window_split_max);
                 } else if (ratio < 0.5f) {

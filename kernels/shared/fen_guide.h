@@ -41,13 +41,21 @@
 #define FEN_GUIDE_CONNECTIONS 2
 #define FEN_GUIDE_STATS_WORDS 3
 /* With weight windows (GuideParams.windows_at > 0), a second buffer of sums per leaf, the window
-   statistics, FEN_GUIDE_WINDOW_WORDS fen_u64 each: */
-#define FEN_GUIDE_DELIVERED_LO 0 /* the luminance of the camera contributions a path made after */
-#define FEN_GUIDE_DELIVERED_HI 1 /*   leaving through the leaf, at RenderParams.fixed_scale */
-#define FEN_GUIDE_ARRIVED_LO 2   /* the luminance of the weight that left through the leaf as it */
-#define FEN_GUIDE_ARRIVED_HI 3   /*   arrived at the vertex, at fixed_scale / A_pix (the camera's) */
-#define FEN_GUIDE_VISITS 4       /* paths (or branches) that left through the leaf */
-#define FEN_GUIDE_WINDOW_WORDS 5
+   statistics, FEN_GUIDE_WINDOW_WORDS fen_u64 each, 128-bit fixed point at FEN_GUIDE_WINDOW_SCALE
+   times the film's RenderParams.fixed_scale (the squares at its square): 2^-20 leaves room for
+   the square of a contribution 2^43 times the film's reference luminance, and still registers one
+   of 2^-20 of it in the plain sums. */
+#define FEN_GUIDE_WINDOW_SCALE 0x1p-20f
+#define FEN_GUIDE_DELIVERED_LO 0    /* the luminance C of each camera contribution a path made after */
+#define FEN_GUIDE_DELIVERED_HI 1    /*   leaving through the leaf */
+#define FEN_GUIDE_DELIVERED_SQ_LO 2 /* ... and C^2 */
+#define FEN_GUIDE_DELIVERED_SQ_HI 3
+#define FEN_GUIDE_ARRIVED_LO 4      /* the luminance of the weight each path that left through the */
+#define FEN_GUIDE_ARRIVED_HI 5      /*   leaf arrived at the vertex with, over A_pix (the camera's): a */
+#define FEN_GUIDE_ARRIVED_SQ_LO 6   /*   number of C's magnitude; and its square */
+#define FEN_GUIDE_ARRIVED_SQ_HI 7
+#define FEN_GUIDE_VISITS 8          /* paths (or branches) that left through the leaf */
+#define FEN_GUIDE_WINDOW_WORDS 9
 
 /* A child word of a node: FEN_GUIDE_LEAF | global leaf index, or the global index of a node. */
 #define FEN_GUIDE_LEAF 0x80000000u
@@ -71,9 +79,11 @@
  *  - alias columns of a learned slot, uint2 each: (threshold, alias leaf, counted from the slot's
  *    first leaf); column j gives leaf j to the values below the threshold, its alias to the rest
  *    (host/util/integer_cdf.h);
- *  - with weight windows, one float per slot: the weight (luminance at fixed_scale / A_pix) whose
- *    expected contribution from this vertex on is the target's; 0 where the slot has not been
- *    seen enough, FLT_MAX where it was seen and never delivered (lib/guide.h guide_window). */
+ *  - with weight windows, one float per slot: the window weight, a luminance over A_pix at the
+ *    window statistics' scale (FEN_GUIDE_WINDOW_SCALE fixed_scale), at which
+ *    a path's expected contribution from this vertex on (rule `mean`), or the root of its second
+ *    moment (rule `moment`), is the target's; 0 where the slot has not been seen enough, FLT_MAX
+ *    where it was seen and never delivered (lib/guide.h guide_window). */
 
 FEN_NS_BEGIN
 

@@ -513,11 +513,15 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     expectError(run("render " + good + out + " --adaptive-guide-memory 1"), 1, "--adaptive-guide-memory 1");
     expectError(run("render " + good + out + " --adaptive-guide-voxels 17"), 1, "--adaptive-guide-voxels 17");
     expectError(run("render " + good + out + " --adaptive-guide-vertices all"), 1, "--adaptive-guide-vertices 'all'");
-    expectError(run("render " + good + out + " --adaptive-window maybe"), 1, "--adaptive-window 'maybe'");
-    expectError(run("render " + good + out + " --adaptive-window on --adaptive-window-split 1"), 1, "--adaptive-window-split 1");
-    expectError(run("render " + good + out + " --adaptive-window on --adaptive-window-survival 0"), 1, "--adaptive-window-survival 0");
+    // weight windows: a rule, at least two branches, a survival that is not 0, only with the guide
+    expectError(run("render " + good + out + " --adaptive-window on"), 1, "--adaptive-window 'on'");
+    expectError(run("render " + good + out + " --adaptive-window mean --adaptive-window-split 1"), 1,
+                "--adaptive-window-split 1");
+    expectError(run("render " + good + out + " --adaptive-window moment --adaptive-window-survival 0"), 1,
+                "--adaptive-window-survival 0");
     expectError(run("render " + good + out + " --adaptive-window-split 8"), 1, "--adaptive-window-split and");
-    expectError(run("render " + good + out + " --adaptive-window on --adaptive-guide off"), 1, "--adaptive-window on: needs");
+    expectError(run("render " + good + out + " --adaptive-window mean --adaptive-guide off"), 1,
+                "--adaptive-window: needs");
     // splitting: a count of branches, a positive weight unit -- never silently the default
     expectError(run("render " + good + out + " --split 0"), 1, "--split 0");
     expectError(run("render " + good + out + " --split -1"), 1, "--split -1");

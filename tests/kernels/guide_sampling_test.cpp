@@ -170,58 +170,83 @@ TEST(GuideSampling, LearnedTableIsTheDocumentedMixtureAndTheDeviceDrawsIt)
 }
 
 // Writes the weight-window sums (fen_guide.h) of a slot's first leaf: delivered, arrived (whole
-// fixed-point units) and visits.
+// fixed-point units), their squares' sums as delivered^2 and arrived^2 (so that per slot the
+// moment rule's ratio is the square of the mean rule's), and visits.
 void writeWindowSums(ocl::Context& ctx, const FirstBounceGuide& g, std::uint32_t slot, std::uint64_t delivered,
                      std::uint64_t arrived, std::uint64_t visits)
 {
     std::vector<std::uint64_t> words(FEN_GUIDE_WINDOW_WORDS, 0);
     words[FEN_GUIDE_DELIVERED_LO] = delivered;
+    words[FEN_GUIDE_DELIVERED_SQ_LO] = delivered * delivered;
     words[FEN_GUIDE_ARRIVED_LO] = arrived;
+    words[FEN_GUIDE_ARRIVED_SQ_LO] = arrived * arrived;
     words[FEN_GUIDE_VISITS] = visits;
     ctx.queue().enqueueWriteBuffer(g.windowStats(), CL_TRUE,
                                    std::size_t{g.leaves(slot)[0].index} * FEN_GUIDE_WINDOW_WORDS * 8, words.size() * 8,
                                    words.data());
 }
 
-TEST(GuideSampling, WindowsAreTheTargetOverTheAdjoint)
+// The windows from the sums writeWindowSums() leaves, per rule; returns the first six slots'.
+std::vector<float> windowsOf(ocl::Context& ctx, GuideOptions::WindowRule rule, nlohmann::json* report)
 {
-    FEN_CL_CONTEXT_OR_SKIP(ctx);
     GuideOptions o = options();
     o.window = true;
+    o.windowRule = rule;
     o.windowMinVisits = 100.0;
-    FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
+    FirstBounceGuide g(ctx, o, glm::dvec3(0.0), 8.0);
     // Slot 1 delivers 3 per unit of arriving weight, slot 2 a quarter; slot 3 was seen too few
-    // times for a window; slot 4 often, and never delivered. T = all delivered / all visits.
-    writeWindowSums(*ctx, g, 1, 3000, 1000, 1000);
-    writeWindowSums(*ctx, g, 2, 1000, 4000, 1000);
-    writeWindowSums(*ctx, g, 3, 50, 10, 99);
-    writeWindowSums(*ctx, g, 4, 0, 500, 1000);
+    // times for a window; slot 4 often, and never delivered.
+    writeWindowSums(ctx, g, 1, 3000, 1000, 1000);
+    writeWindowSums(ctx, g, 2, 1000, 4000, 1000);
+    writeWindowSums(ctx, g, 3, 50, 10, 99);
+    writeWindowSums(ctx, g, 4, 0, 500, 1000);
     g.learn();
-    const double target = (3000.0 + 1000.0 + 50.0) / (1000.0 + 1000.0 + 99.0 + 1000.0);
-    const nlohmann::json report = g.report();
-    EXPECT_DOUBLE_EQ(report["window_target"].get<double>(), target);
-    EXPECT_EQ(report["window_slots"].get<int>(), 3);
+    *report = g.report();
     dev::GuideParams p;
-    ctx->queue().enqueueReadBuffer(g.params(), CL_TRUE, 0, sizeof p, &p);
-    ASSERT_GT(p.windows_at, 0u);
+    ctx.queue().enqueueReadBuffer(g.params(), CL_TRUE, 0, sizeof p, &p);
+    EXPECT_GT(p.windows_at, 0u);
     EXPECT_EQ(p.window_split_max, 16u);
     std::vector<float> w(6);
-    ctx->queue().enqueueReadBuffer(g.tables(), CL_TRUE, std::size_t{p.windows_at} * 4, w.size() * 4, w.data());
-    EXPECT_EQ(w[0], 0.0f);  // never seen
-    EXPECT_FLOAT_EQ(w[1], static_cast<float>(target / 3.0));
-    EXPECT_FLOAT_EQ(w[2], static_cast<float>(target * 4.0));
-    EXPECT_EQ(w[3], 0.0f);
-    EXPECT_EQ(w[4], std::numeric_limits<float>::max());
+    ctx.queue().enqueueReadBuffer(g.tables(), CL_TRUE, std::size_t{p.windows_at} * 4, w.size() * 4, w.data());
     // The totals survive a checkpoint: the reloaded guide makes the same windows.
     StateWriter out;
     g.save(out);
-    FirstBounceGuide h(*ctx, o, glm::dvec3(0.0), 8.0);
+    FirstBounceGuide h(ctx, o, glm::dvec3(0.0), 8.0);
     StateReader in(out.bytes(), "test state");
     h.load(in);
-    EXPECT_EQ(h.report()["window_target"], report["window_target"]);
+    EXPECT_EQ(h.report()["window_target"], (*report)["window_target"]);
     std::vector<float> v(6);
-    ctx->queue().enqueueReadBuffer(h.tables(), CL_TRUE, std::size_t{p.windows_at} * 4, v.size() * 4, v.data());
+    ctx.queue().enqueueReadBuffer(h.tables(), CL_TRUE, std::size_t{p.windows_at} * 4, v.size() * 4, v.data());
     EXPECT_EQ(v, w);
+    return w;
+}
+
+TEST(GuideSampling, WindowsAreTheTargetOverTheAdjoint)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // The windows are in the units of the sums, which the device compares its own with.
+    const double unit = 1.0;
+    nlohmann::json report;
+    // Mean: T = all delivered / all visits, w = T / J with J = delivered / arrived.
+    const std::vector<float> w = windowsOf(*ctx, GuideOptions::WindowRule::Mean, &report);
+    const double target = (3000.0 + 1000.0 + 50.0) / (1000.0 + 1000.0 + 99.0 + 1000.0);
+    EXPECT_DOUBLE_EQ(report["window_target"].get<double>(), target);
+    EXPECT_EQ(report["window_slots"].get<int>(), 3);
+    EXPECT_EQ(w[0], 0.0f);  // never seen
+    EXPECT_FLOAT_EQ(w[1], static_cast<float>(target / 3.0 * unit));
+    EXPECT_FLOAT_EQ(w[2], static_cast<float>(target * 4.0 * unit));
+    EXPECT_EQ(w[3], 0.0f);
+    EXPECT_EQ(w[4], std::numeric_limits<float>::max());
+    // Moment: tau^2 = all delivered^2 / all visits, w = tau / sqrt(M) with M = delivered^2 / arrived^2.
+    const std::vector<float> m = windowsOf(*ctx, GuideOptions::WindowRule::Moment, &report);
+    const double tau2 = (9e6 + 1e6 + 2500.0) / (1000.0 + 1000.0 + 99.0 + 1000.0);
+    EXPECT_DOUBLE_EQ(report["window_target"].get<double>(), tau2);
+    EXPECT_EQ(report["window"], "moment");
+    EXPECT_EQ(m[0], 0.0f);
+    EXPECT_FLOAT_EQ(m[1], static_cast<float>(std::sqrt(tau2) / 3.0 * unit));
+    EXPECT_FLOAT_EQ(m[2], static_cast<float>(std::sqrt(tau2) * 4.0 * unit));
+    EXPECT_EQ(m[3], 0.0f);
+    EXPECT_EQ(m[4], std::numeric_limits<float>::max());
 }
 
 TEST(GuideSampling, TreesRefineWhereTheDensityConcentratesAndTheDeviceFollows)
@@ -450,11 +475,12 @@ TEST(GuideSampling, StateThatDoesNotDescribeTreesIsAnErrorNamingTheField)
     EXPECT_NE(attempt(good, {3}, {1, 1, 1, 1}, {}).find("guide.shape"), std::string::npos) << "a shape cut short";
     std::vector<std::uint64_t> leafy(4, 0);
     EXPECT_NE(attempt(good, {3}, leafy, {1.0, 1.0}).find("guide.leaves"), std::string::npos) << "3 leaves missing";
-    // five totals a leaf (S, contributions, and the weight windows' delivered, arrived, visits)
-    std::vector<double> totals(20, 0.0);
+    // seven totals a leaf (S, contributions, and the weight windows' delivered, its square,
+    // arrived, its square, visits)
+    std::vector<double> totals(28, 0.0);
     totals[0] = totals[1] = 1.0;
     std::vector<double> negative = totals;
-    negative[8] = -1.0;  // the second leaf's windows' arrived
+    negative[11] = -1.0;  // the second leaf's windows' arrived
     EXPECT_NE(attempt(good, {3}, leafy, negative).find("guide.leaves"), std::string::npos);
     // The guide is still whole after the failures: the last good state loads.
     EXPECT_EQ(attempt(good, {3}, leafy, totals), "");

@@ -88,11 +88,11 @@ struct Stages {
         ocl::setKernelArgs(isect, paths, hits, n, ds.bvh().nodes(), ds.bvh().packets());
         ocl::setKernelArgs(shade, params, paths, splits, hits, ds.primMaterial(), ds.materials(), ds.primUv(),
                            ds.texels(), camBuf, conns,
-                           noGuide.params(), noGuide.tables(), noSensors.info(), noSensors.planes(),
+                           noGuide.params(), noGuide.tables(), noGuide.windowStats(), noSensors.info(), noSensors.planes(),
                            noSensors.cellTable(), noSensors.bucketStart(), noSensors.bucketCells(),
                            noSensors.accumulators(), stats, noSensors.steer(), counters);
         ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.primMaterial(),
-                           ds.materials(), accum, stats, noScale, noGuide.stats(), counters);
+                           ds.materials(), accum, stats, noScale, noGuide.stats(), noGuide.windowStats(), counters);
         ocl::launch(ctx, isect, "intersect_paths", n);
         ocl::launch(ctx, shade, "shade_paths", n);
         ocl::launch(ctx, connect, "connect_paths", n);

@@ -323,18 +323,23 @@ TEST(Analytic, GuidedEveryVertexConservesEnergy)
 TEST(Analytic, WeightWindowsConserveEnergy)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
-    // Weight windows at the first diffuse vertex, learned with the guide: paths whose expected
-    // contribution is far above the target split, those far below are culled (surviving with at
-    // least 1/4, their weight over the odds). Both must happen, and the mean must not move.
-    const auto r = integratingSphere(*ctx, 4u << 20, [](RenderSettings& s) {
-        guided(false)(s);
-        s.emission.adaptive.guide.window = true;
-        s.emission.adaptive.guide.windowMinVisits = 16.0;
-        s.emission.adaptive.guide.windowMinSurvival = 0.25;
-    }, "integrating sphere, weight windows");
-    EXPECT_GT(r.counts.splitBranches, r.paths / 100);
-    EXPECT_GT(r.counts.windowCulls, r.paths / 100);
-    EXPECT_GT(r.emission["guide"].value("window_slots", 0), 0);
+    // Weight windows at the first diffuse vertex, learned with the guide, by either rule: paths
+    // whose expected contribution (or its root second moment) is far above the target split, those
+    // far below are culled (surviving with at least 1/4, their weight over the odds). Both must
+    // happen, and the mean must not move.
+    for (const auto rule : {GuideOptions::WindowRule::Mean, GuideOptions::WindowRule::Moment}) {
+        const bool moment = rule == GuideOptions::WindowRule::Moment;
+        const auto r = integratingSphere(*ctx, 4u << 20, [rule](RenderSettings& s) {
+            guided(false)(s);
+            s.emission.adaptive.guide.window = true;
+            s.emission.adaptive.guide.windowRule = rule;
+            s.emission.adaptive.guide.windowMinVisits = 16.0;
+            s.emission.adaptive.guide.windowMinSurvival = 0.25;
+        }, moment ? "integrating sphere, weight windows (moment)" : "integrating sphere, weight windows (mean)");
+        EXPECT_GT(r.counts.splitBranches, r.paths / 100) << moment;
+        EXPECT_GT(r.counts.windowCulls, r.paths / 100) << moment;
+        EXPECT_GT(r.emission["guide"].value("window_slots", 0), 0) << moment;
+    }
 }
 
 TEST(Analytic, SkySeenDirectlyAndThroughGlass)

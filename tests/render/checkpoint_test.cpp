@@ -40,6 +40,7 @@ RenderResult renderCase(ocl::Context& ctx, const Case& c, const std::string& che
     s.emission.adaptive.guide.minConnections = 4.0;
     s.emission.adaptive.guide.minGain = 1.0;  // tables in use wherever anything was seen
     s.emission.adaptive.guide.window = c.window;
+    s.emission.adaptive.guide.windowRule = GuideOptions::WindowRule::Moment;
     s.emission.adaptive.guide.windowMinVisits = 16.0;
     s.emission.adaptive.guide.windowMinSurvival = 0.25;
     s.paths = 1u << 20;

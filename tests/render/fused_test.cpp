@@ -46,6 +46,7 @@ RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
     s.emission.adaptive.guide.enabled = c.guide;
     s.emission.adaptive.guide.everyVertex = c.guideEveryVertex;
     s.emission.adaptive.guide.window = c.window;
+    s.emission.adaptive.guide.windowRule = GuideOptions::WindowRule::Moment;
     s.emission.adaptive.guide.windowMinVisits = 16.0;
     s.emission.adaptive.guide.windowMinSurvival = 0.25;  // some culled, some split
     s.emission.adaptive.guide.minConnections = 4.0;
