@@ -28,7 +28,7 @@ static_assert(FEN_GUIDE_MAX_DEPTH <= 14, "a leaf's corner has 14 bits per axis")
 // Device bytes per leaf: its statistics, its entry, up to two alias columns, a third of a node.
 constexpr double kBytesPerLeaf = 8.0 * FEN_GUIDE_STATS_WORDS + 8.0 + 16.0 + 16.0 / 3.0;
 constexpr double kMiB = 1024.0 * 1024.0;
-constexpr std::size_t kSavedPerLeaf = 7;  // a leaf's totals in a checkpoint (save(), load())
+constexpr std::size_t kSavedPerLeaf = 7;  // a leaf's totals in a checkpoint: Leaf::totals()
 
 // Voxels along each side of the lattice cube (side 2R): the power of 2 at or above 2 voxelsAcross.
 std::uint32_t latticeCells(int voxelsAcross)
@@ -636,9 +636,10 @@ void FirstBounceGuide::save(StateWriter& w) const
             }
         };
         walk(0);
-        for (const Leaf& l : t.leaves)
-            leaves.insert(leaves.end(), {l.sumSq, l.connections, l.delivered, l.deliveredSq, l.arrived, l.arrivedSq,
-                                         l.visits});
+        for (const Leaf& l : t.leaves) {
+            const auto v = l.totals();
+            leaves.insert(leaves.end(), v.begin(), v.end());
+        }
     }
     w.u64s("guide.space", spaceShape());
     w.u64s("guide.slots", slots);
@@ -719,9 +720,8 @@ void FirstBounceGuide::load(StateReader& r)
                 } else {
                     if (leafAt + kSavedPerLeaf > leaves.size())
                         r.fail("guide.leaves", "fewer leaves than the trees' shapes hold");
-                    double* totals[kSavedPerLeaf] = {&l.sumSq,    &l.connections, &l.delivered, &l.deliveredSq,
-                                                     &l.arrived, &l.arrivedSq,   &l.visits};
-                    for (double* v : totals) {
+                    static_assert(std::tuple_size<decltype(l.totals())>::value == kSavedPerLeaf);
+                    for (double* v : l.totals()) {
                         *v = r.finite("guide.leaves", leaves[leafAt++]);
                         if (*v < 0.0)
                             r.fail("guide.leaves", "a negative sum or count");

@@ -161,9 +161,19 @@ private:
         // leaf and its square, the weight's luminance over A_pix as it arrived at the vertex and its
         // square, and how many left (fen_guide.h)
         double delivered = 0.0, deliveredSq = 0.0, arrived = 0.0, arrivedSq = 0.0, visits = 0.0;
+        // Every total above, in the order a checkpoint keeps them (save(), load()).
+        std::array<double*, 7> totals()
+        {
+            return {&sumSq, &connections, &delivered, &deliveredSq, &arrived, &arrivedSq, &visits};
+        }
+        std::array<double, 7> totals() const
+        {
+            return {sumSq, connections, delivered, deliveredSq, arrived, arrivedSq, visits};
+        }
         void scaleTotals(double f)
         {
-            sumSq *= f, connections *= f, delivered *= f, deliveredSq *= f, arrived *= f, arrivedSq *= f, visits *= f;
+            for (double* v : totals())
+                *v *= f;
         }
         float density = 1.0f;                   // d(b) the last tables drew it with (1: the cosine)
         std::uint32_t x0 = 0, y0 = 0, depth = 0;  // corner in 2^-FEN_GUIDE_MAX_DEPTH units

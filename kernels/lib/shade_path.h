@@ -68,6 +68,14 @@ typedef struct {
     ulong split, culled; /* weight windows and --split: branches made; windows: paths culled */
 } VertexTally;
 
+/* With weight windows: the units of a path's arriving weight in the window statistics and the windows
+   (lib/guide.h), luminance over A_pix at FEN_GUIDE_WINDOW_SCALE times the film's fixed-point scale;
+   times Y(beta) it is comparable with the contributions the statistics sum at that scale. */
+static inline float window_units(global const RenderParams* params, global const DevCamera* cam)
+{
+    return params->fixed_scale * FEN_GUIDE_WINDOW_SCALE / cam->up.w;
+}
+
 /* The point of the square for a diffuse scatter at a vertex of learned slot record r: drawn from
    the slot's table with the path's own guide random numbers (keyed by its depth, so every vertex
    draws its own); *key the leaf, *d its density (lib/guide.h). */
@@ -109,8 +117,7 @@ static inline int scatter_first(global const RenderParams* params, const Guide* 
         key = guide_leaf(guide, r, sq);
     }
     if (guide->params->windows_at)
-        guide_arrive(guide, key, rgb_luminance(p->beta.xyz) * (params->fixed_scale * FEN_GUIDE_WINDOW_SCALE / cam->up.w),
-                     counters);
+        guide_arrive(guide, key, rgb_luminance(p->beta.xyz) * window_units(params, cam), counters);
     const int alive = scatter_through(params, p, albedo, n, u, sq, d, next);
     const float y = rgb_luminance(p->beta.xyz);
     p->org.w = alive && y > 0.0f ? guide->params->stats_scale * cam->up.w / (y * d) : 0.0f;
@@ -220,8 +227,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
             const float w = guide->params->slots ? guide_window(guide, slot) : 0.0f;
             uint k = 0u;
             if (w > 0.0f) {
-                const float ratio =
-                    rgb_luminance(p->beta.xyz) * (params->fixed_scale * FEN_GUIDE_WINDOW_SCALE / cam->up.w) / w;
+                const float ratio = rgb_luminance(p->beta.xyz) * window_units(params, cam) / w;
                 if (ratio >= 2.0f) {
                     k = (uint)fmin(ratio, (float)guide->params->window_split_max);
                 } else if (ratio < 0.5f) {
