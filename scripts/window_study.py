@@ -13,7 +13,11 @@ the median efficiency per scene and variant; every line also goes to --data.
 
 Variants (--variants, comma-separated names): off (the default: no windows); mean and moment (the
 two rules' windows, splitting and never culling); mean_cull50, moment_cull50 (also culling, the
-survival at least 0.5) and mean_cull05, moment_cull05 (at least 0.05).
+survival at least 0.5) and mean_cull05, moment_cull05 (at least 0.05). Any other option set is a
+variant of its own with --variant NAME 'OPTIONS' (repeatable; then list NAME in --variants), e.g.
+
+    python3 scripts/window_study.py --variants off,ss1024 \\
+        --variant ss1024 '--adaptive-guide-space-split 1024'
 """
 import argparse
 import json
@@ -39,7 +43,12 @@ def main():
     ap.add_argument("--time", type=float, default=20.0)
     ap.add_argument("--out", default="out/window")
     ap.add_argument("--data", default=None, help="append every line to this file")
+    ap.add_argument("--variant", nargs=2, action="append", default=[], metavar=("NAME", "OPTIONS"),
+                    help="a variant of fenestra's own options, split at spaces")
+    ap.add_argument("--common", default="", help="options for every run, split at spaces (e.g. '--roi X0,Y0,X1,Y1')")
     a = ap.parse_args()
+    for name, options in a.variant:
+        VARIANTS[name] = options.split()
     os.makedirs(a.out, exist_ok=True)
     variants = a.variants.split(",")
     for v in variants:
@@ -54,7 +63,7 @@ def main():
                 stem = os.path.join(a.out, f"{scene}_{v}_{seed}")
                 cmd = [a.fenestra, "render", f"scenes/{scene}.gltf", "--method", "adaptive", "--seed", seed,
                        "--width", str(a.width), "--time", str(a.time), "--no-progress", "--out", stem + ".exr"]
-                subprocess.run(cmd + VARIANTS[v], check=True, stdout=subprocess.DEVNULL)
+                subprocess.run(cmd + a.common.split() + VARIANTS[v], check=True, stdout=subprocess.DEVNULL)
                 j = json.load(open(stem + ".json"))
                 c = j["counters"]
                 runs[v] = (j["noise_std_err_cd_m2"], j["seconds"]["render"])
