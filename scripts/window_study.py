@@ -61,7 +61,9 @@ def main():
             runs = {}
             for v in variants:
                 stem = os.path.join(a.out, f"{scene}_{v}_{seed}")
-                cmd = [a.fenestra, "render", f"scenes/{scene}.gltf", "--method", "adaptive", "--seed", seed,
+                # adaptive unless the variant names its own method (e.g. --variant uniform '--method uniform')
+                method = [] if "--method" in VARIANTS[v] else ["--method", "adaptive"]
+                cmd = [a.fenestra, "render", f"scenes/{scene}.gltf", *method, "--seed", seed,
                        "--width", str(a.width), "--time", str(a.time), "--no-progress", "--out", stem + ".exr"]
                 subprocess.run(cmd + a.common.split() + VARIANTS[v], check=True, stdout=subprocess.DEVNULL)
                 j = json.load(open(stem + ".json"))
