@@ -28,7 +28,10 @@ static_assert(FEN_GUIDE_MAX_DEPTH <= 14, "a leaf's corner has 14 bits per axis")
 // Device bytes per leaf: its statistics, its entry, up to two alias columns, a third of a node.
 constexpr double kBytesPerLeaf = 8.0 * FEN_GUIDE_STATS_WORDS + 8.0 + 16.0 + 16.0 / 3.0;
 constexpr double kMiB = 1024.0 * 1024.0;
-constexpr std::size_t kSavedPerLeaf = 7;  // a leaf's totals in a checkpoint: Leaf::totals()
+constexpr std::size_t kSavedPerLeaf = 2;  // a leaf's totals in a checkpoint: Leaf::totals()
+constexpr std::size_t kSavedPerWindow = 3;  // a slot's window totals in a checkpoint: Tree::windowTotals()
+// Device bytes per slot with weight windows: its statistics and its window word.
+constexpr double kWindowBytesPerSlot = 8.0 * FEN_GUIDE_WINDOW_WORDS + 4.0;
 
 // Voxels along each side of the lattice cube (side 2R): the power of 2 at or above 2 voxelsAcross.
 std::uint32_t latticeCells(int voxelsAcross)
@@ -150,9 +153,10 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
             spatialLeaves_.push_back(l);
         }
         trees_.assign(FEN_GUIDE_SIDES * voxels, initialTree());
-        // Per leaf: its own bytes, and its share of a slot's record and a spatial node when every
-        // slot has at least the initial 64 leaves.
-        const double perLeaf = kBytesPerLeaf + (opt_.window ? 8.0 * FEN_GUIDE_WINDOW_WORDS + 4.0 / kInitialLeaves : 0.0) +
+        // Per leaf: its own bytes (with weight windows, its slot's word too), and its share of a
+        // slot's record, window statistics and a spatial node when every slot has at least the
+        // initial 64 leaves.
+        const double perLeaf = kBytesPerLeaf + (opt_.window ? 4.0 + kWindowBytesPerSlot / kInitialLeaves : 0.0) +
                                (16.0 + 8.0 / FEN_GUIDE_SIDES) / kInitialLeaves;
         leafCapacity_ = static_cast<std::size_t>((opt_.memoryMiB * kMiB - 4.0 * voxels) / perLeaf);
         slotCapacity_ = std::max(trees_.size(), leafCapacity_ / kInitialLeaves);
@@ -170,7 +174,7 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
     deviceParams_.spatial_at = static_cast<std::uint32_t>(deviceParams_.voxels_at + voxels);
     const std::size_t nodesAt = deviceParams_.spatial_at + 2 * spatialCapacity_;
     const std::size_t tableWords = nodesAt + 4 * nodeCapacity_ + 2 * leafCapacity_ + 2 * columnCapacity_;
-    if (tableWords + slotCapacity_ >= (std::size_t{1} << 32))
+    if (tableWords + slotCapacity_ + leafCapacity_ >= (std::size_t{1} << 32))
         throw Error(cat("--adaptive-guide-memory ", opt_.memoryMiB, ": the tables would pass 2^32 words"));
     deviceParams_.nodes_at = static_cast<std::uint32_t>(nodesAt);
     deviceParams_.leaves_at = static_cast<std::uint32_t>(deviceParams_.nodes_at + 4 * nodeCapacity_);
@@ -179,8 +183,11 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
         deviceParams_.windows_at = static_cast<std::uint32_t>(deviceParams_.columns_at + 2 * columnCapacity_);
         deviceParams_.window_min_survival = static_cast<float>(opt_.windowMinSurvival);
         deviceParams_.window_split_max = static_cast<std::uint32_t>(opt_.windowSplitMax);
+        deviceParams_.window_power = opt_.windowRule == GuideOptions::WindowRule::Moment ? 2u : 1u;
+        deviceParams_.leaf_slots_at = static_cast<std::uint32_t>(deviceParams_.windows_at + slotCapacity_);
     }
-    const std::size_t windowWords = deviceParams_.windows_at ? slotCapacity_ : 0;
+    // with weight windows: a word per slot (its window) and per leaf (its slot)
+    const std::size_t windowWords = deviceParams_.windows_at ? slotCapacity_ + leafCapacity_ : 0;
     rebuild();
     const auto add = [this](std::size_t bytes) {
         deviceBytes_ += bytes;
@@ -189,7 +196,7 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
     params_ = ctx_.buffer(CL_MEM_READ_ONLY, add(sizeof deviceParams_), "guide parameters", &deviceParams_);
     tables_ = ctx_.buffer(CL_MEM_READ_ONLY, add((tableWords + windowWords) * 4), "guide tables");
     stats_ = ctx_.buffer(CL_MEM_READ_WRITE, add(leafCapacity_ * FEN_GUIDE_STATS_WORDS * 8), "guide statistics");
-    windowStats_ = ctx_.buffer(CL_MEM_READ_WRITE, add((windowWords ? leafCapacity_ : 1) * FEN_GUIDE_WINDOW_WORDS * 8),
+    windowStats_ = ctx_.buffer(CL_MEM_READ_WRITE, add((windowWords ? slotCapacity_ : 1) * FEN_GUIDE_WINDOW_WORDS * 8),
                                "guide window statistics");
     upload();
     clearStats();
@@ -197,9 +204,9 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
 
 static_assert(FEN_GUIDE_SUMSQ_LO == 0 && FEN_GUIDE_CONNECTIONS == 2 && FEN_GUIDE_STATS_WORDS == 3,
               "a leaf's statistics as summed() describes them: a 128-bit sum and a count");
-static_assert(FEN_GUIDE_DELIVERED_LO == 0 && FEN_GUIDE_DELIVERED_SQ_LO == 2 && FEN_GUIDE_ARRIVED_LO == 4 &&
-                  FEN_GUIDE_ARRIVED_SQ_LO == 6 && FEN_GUIDE_VISITS == 8 && FEN_GUIDE_WINDOW_WORDS == 9,
-              "a leaf's window statistics as windowSummed() describes them: four 128-bit sums and a count");
+static_assert(FEN_GUIDE_DELIVERED_LO == 0 && FEN_GUIDE_ARRIVED_LO == 2 && FEN_GUIDE_VISITS == 4 &&
+                  FEN_GUIDE_WINDOW_WORDS == 5,
+              "a slot's window statistics as windowSummed() describes them: two 128-bit sums and a count");
 
 void FirstBounceGuide::clearStats()
 {
@@ -207,7 +214,7 @@ void FirstBounceGuide::clearStats()
                                    std::max<std::size_t>(leafCount_, 1) * FEN_GUIDE_STATS_WORDS * 8);
     if (deviceParams_.windows_at)
         ctx_.queue().enqueueFillBuffer(windowStats_, cl_ulong(0), 0,
-                                       std::max<std::size_t>(leafCount_, 1) * FEN_GUIDE_WINDOW_WORDS * 8);
+                                       std::max<std::size_t>(trees_.size(), 1) * FEN_GUIDE_WINDOW_WORDS * 8);
 }
 
 // Splits, in every slot whose table will steer, each leaf that held more than splitShare of its
@@ -263,6 +270,9 @@ std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
             continue;
         const Tree& old = trees_[s];
         Tree t;
+        const auto window = old.windowTotals();  // the slot's, whatever its leaves
+        for (std::size_t k = 0; k < window.size(); ++k)
+            *t.windowTotals()[k] = window[k];
         std::function<std::int32_t(std::int32_t)> copy = [&](std::int32_t n) {
             const auto at = static_cast<std::int32_t>(t.nodes.size());
             t.nodes.push_back({});
@@ -370,6 +380,7 @@ void FirstBounceGuide::rebuild()
     nodeWords_.clear();
     leafWords_.clear();
     columnWords_.clear();
+    leafSlotWords_.clear();
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
         std::uint32_t* rec = records_.data() + 4 * s;
@@ -385,6 +396,8 @@ void FirstBounceGuide::rebuild()
             leafWords_.insert(leafWords_.end(), {floatBits(l.density), l.x0 | (l.y0 << 14) | (l.depth << 28)});
         if (t.learned)
             columnWords_.insert(columnWords_.end(), t.alias.begin(), t.alias.end());
+        if (deviceParams_.windows_at)
+            leafSlotWords_.insert(leafSlotWords_.end(), t.leaves.size(), static_cast<std::uint32_t>(s));
     }
     rebuildWindows();
     if (nodeWords_.size() > 4 * nodeCapacity_ || leafWords_.size() > 2 * leafCapacity_ ||
@@ -393,8 +406,9 @@ void FirstBounceGuide::rebuild()
         throw Error("guide tables: beyond the capacity they were sized for");  // refine() keeps within
 }
 
-// The weight windows (fen_guide.h), per slot from its leaves' totals (sums at the window scale S, the
-// squares at S^2; a = a path's arriving luminance over A_pix, C a contribution it made after):
+// The weight windows (fen_guide.h), per slot from its totals (sums at the window scale S, the squares
+// at S^2, each of the power the rule needs; a = a path's arriving luminance over A_pix, C a
+// contribution it made after):
 //  - rule Mean: the adjoint J = sum C / sum a -- what a unit of arriving weight delivers from
 //    then on, on average -- and the target T = sum C / visits over all slots; w = T / J, the
 //    arriving weight expected to deliver T;
@@ -415,25 +429,20 @@ void FirstBounceGuide::rebuildWindows()
     if (!deviceParams_.windows_at)
         return;
     const bool moment = opt_.windowRule == GuideOptions::WindowRule::Moment;
-    std::vector<double> delivered(trees_.size(), 0.0), arrived(trees_.size(), 0.0), visits(trees_.size(), 0.0);
     double allDelivered = 0.0, allVisits = 0.0;
-    for (std::size_t s = 0; s < trees_.size(); ++s) {
-        for (const Leaf& l : trees_[s].leaves) {
-            delivered[s] += moment ? l.deliveredSq : l.delivered;
-            arrived[s] += moment ? l.arrivedSq : l.arrived;
-            visits[s] += l.visits;
-        }
-        allDelivered += delivered[s];
-        allVisits += visits[s];
+    for (const Tree& t : trees_) {
+        allDelivered += t.delivered;
+        allVisits += t.visits;
     }
     windowWords_.assign(trees_.size(), 0u);
     if (!(allDelivered > 0.0))
         return;
     windowTarget_ = allDelivered / allVisits;  // T S, or tau^2 S^2
     for (std::size_t s = 0; s < trees_.size(); ++s) {
-        if (visits[s] < opt_.windowMinVisits || !(arrived[s] > 0.0))
+        const Tree& t = trees_[s];
+        if (t.visits < opt_.windowMinVisits || !(t.arrived > 0.0))
             continue;
-        const double ratio = delivered[s] > 0.0 ? windowTarget_ * arrived[s] / delivered[s] : 0.0;
+        const double ratio = t.delivered > 0.0 ? windowTarget_ * t.arrived / t.delivered : 0.0;
         const double w = moment ? std::sqrt(ratio) : ratio;
         windowWords_[s] = floatBits(w > 0.0 && w < 3e38 ? static_cast<float>(w) : std::numeric_limits<float>::max());
         ++windowSlots_;
@@ -454,8 +463,10 @@ void FirstBounceGuide::upload()
     section(deviceParams_.nodes_at, nodeWords_);
     section(deviceParams_.leaves_at, leafWords_);
     section(deviceParams_.columns_at, columnWords_);
-    if (deviceParams_.windows_at)
+    if (deviceParams_.windows_at) {
         section(deviceParams_.windows_at, windowWords_);
+        section(deviceParams_.leaf_slots_at, leafSlotWords_);
+    }
     q.finish();
 }
 
@@ -544,6 +555,8 @@ std::size_t FirstBounceGuide::refineSpace(const std::vector<double>& passConnect
             Tree& t = trees_[FEN_GUIDE_SIDES * c.leaf + k];
             for (Leaf& l : t.leaves)
                 l.scaleTotals(0.5);
+            for (double* v : t.windowTotals())
+                *v *= 0.5;
             trees_.push_back(t);  // the upper half's slot FEN_GUIDE_SIDES upper + k
         }
         leafCount_ += leaves;
@@ -560,7 +573,7 @@ void FirstBounceGuide::learn()
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<std::uint64_t> raw(leafCount_ * FEN_GUIDE_STATS_WORDS);
     ctx_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
-    std::vector<std::uint64_t> windowRaw(deviceParams_.windows_at ? leafCount_ * FEN_GUIDE_WINDOW_WORDS : 0);
+    std::vector<std::uint64_t> windowRaw(deviceParams_.windows_at ? trees_.size() * FEN_GUIDE_WINDOW_WORDS : 0);
     if (!windowRaw.empty())
         ctx_.queue().enqueueReadBuffer(windowStats_, CL_TRUE, 0, windowRaw.size() * 8, windowRaw.data());
     const std::uint64_t* ww = windowRaw.data();
@@ -576,15 +589,14 @@ void FirstBounceGuide::learn()
             pass[s][i].connections = static_cast<double>(w[FEN_GUIDE_CONNECTIONS]);
             l.sumSq += pass[s][i].sumSq;
             l.connections += pass[s][i].connections;
-            if (ww) {
-                // the window's sums, at their scale (the squares at its square): rebuildWindows()
-                l.delivered += fixed128(ww + FEN_GUIDE_DELIVERED_LO);
-                l.deliveredSq += fixed128(ww + FEN_GUIDE_DELIVERED_SQ_LO);
-                l.arrived += fixed128(ww + FEN_GUIDE_ARRIVED_LO);
-                l.arrivedSq += fixed128(ww + FEN_GUIDE_ARRIVED_SQ_LO);
-                l.visits += static_cast<double>(ww[FEN_GUIDE_VISITS]);
-                ww += FEN_GUIDE_WINDOW_WORDS;
-            }
+        }
+        if (ww) {
+            // the window's sums, at their scale (the squares at its square): rebuildWindows()
+            Tree& t = trees_[s];
+            t.delivered += fixed128(ww + FEN_GUIDE_DELIVERED_LO);
+            t.arrived += fixed128(ww + FEN_GUIDE_ARRIVED_LO);
+            t.visits += static_cast<double>(ww[FEN_GUIDE_VISITS]);
+            ww += FEN_GUIDE_WINDOW_WORDS;
         }
     }
     std::vector<double> passConnections(trees_.size(), 0.0);
@@ -615,15 +627,17 @@ std::vector<FirstBounceGuide::LeafView> FirstBounceGuide::leaves(std::uint32_t s
 }
 
 // Slots whose tree was refined or has seen light: their shapes (depth first, per child: 1 a node,
-// 0 a leaf; the root is always a node) and their leaves' (sum, contributions).
+// 0 a leaf; the root is always a node), their leaves' (sum, contributions) and their window totals
+// (delivered, arrived, visits; zeros without weight windows).
 void FirstBounceGuide::save(StateWriter& w) const
 {
     std::vector<std::uint64_t> slots, shape;
-    std::vector<double> leaves;
+    std::vector<double> leaves, windows;
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
-        const bool seen = std::any_of(t.leaves.begin(), t.leaves.end(),
-                                      [](const Leaf& l) { return l.sumSq > 0.0 || l.connections > 0.0 || l.visits > 0.0; });
+        const bool seen = t.visits > 0.0 || std::any_of(t.leaves.begin(), t.leaves.end(), [](const Leaf& l) {
+                              return l.sumSq > 0.0 || l.connections > 0.0;
+                          });
         if (!seen && isInitial(t))
             continue;
         slots.push_back(s);
@@ -640,11 +654,14 @@ void FirstBounceGuide::save(StateWriter& w) const
             const auto v = l.totals();
             leaves.insert(leaves.end(), v.begin(), v.end());
         }
+        const auto v = t.windowTotals();
+        windows.insert(windows.end(), v.begin(), v.end());
     }
     w.u64s("guide.space", spaceShape());
     w.u64s("guide.slots", slots);
     w.u64s("guide.shape", shape);
     w.f64s("guide.leaves", leaves);
+    w.f64s("guide.windows", windows);
     w.u64s("guide.splits", {lastSplits_, deferredSplits_, lastSpatialSplits_, deferredSpatialSplits_});
 }
 
@@ -694,6 +711,7 @@ void FirstBounceGuide::load(StateReader& r)
     const std::vector<std::uint64_t> slots = r.u64s("guide.slots", FEN_GUIDE_SIDES * seenLeaf.size());
     const std::vector<std::uint64_t> shape = r.u64s("guide.shape", 4 * nodeCapacity_);
     const std::vector<double> leaves = r.f64s("guide.leaves", kSavedPerLeaf * leafCapacity_);
+    const std::vector<double> windows = r.f64s("guide.windows", kSavedPerWindow * slots.size(), true);
     const std::vector<std::uint64_t> splits = r.u64s("guide.splits", 4);
     if (splits.size() != 4)
         r.fail("guide.splits", "not (last, deferred, spatial, spatial deferred)");
@@ -732,6 +750,13 @@ void FirstBounceGuide::load(StateReader& r)
             }
         };
         parse(0, 0, 0);
+        static_assert(std::tuple_size<decltype(t.windowTotals())>::value == kSavedPerWindow);
+        std::size_t windowAt = kSavedPerWindow * k;
+        for (double* v : t.windowTotals()) {
+            *v = r.finite("guide.windows", windows[windowAt++]);
+            if (*v < 0.0)
+                r.fail("guide.windows", "a negative sum or count");
+        }
         trees[slots[k]] = std::move(t);
     }
     if (at != shape.size() || leafAt != leaves.size())
@@ -771,14 +796,14 @@ nlohmann::json FirstBounceGuide::report() const
             connections += l.connections;
             checksum.value(l.sumSq);
             checksum.value(l.connections);
-            if (opt_.window)
-                checksum.value(l.visits);
             checksum.value(l.depth);
         }
+        if (opt_.window)
+            checksum.value(t.visits);
         checksum.value(t.learned);
     }
     const double used = trees_.size() * 16.0 + leafCount_ * kBytesPerLeaf + 4.0 * voxelWord_.size() +
-                        (deviceParams_.windows_at ? leafCount_ * 8.0 * FEN_GUIDE_WINDOW_WORDS + trees_.size() * 4.0 : 0.0) +
+                        (deviceParams_.windows_at ? leafCount_ * 4.0 + trees_.size() * kWindowBytesPerSlot : 0.0) +
                         8.0 * spatialNodes_.size();
     std::uint32_t maxSpatial = 0;
     for (const SpatialLeaf& l : spatialLeaves_)

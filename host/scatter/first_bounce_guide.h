@@ -125,9 +125,9 @@ public:
     const cl::Buffer& stats() const { return stats_; }
     const cl::Buffer& windowStats() const { return windowStats_; }  // with weight windows (fen_guide.h)
     // The statistics as a team sums them (team/shared_sums.h): per leaf, a 128-bit sum and a count;
-    // and the weight windows' per leaf, four 128-bit sums and a count (none without windows).
+    // and the weight windows' per slot, two 128-bit sums and a count (none without windows).
     SummedBuffer summed() const { return {&stats_, opt_.enabled ? leafCount_ : 0, {2, 1}}; }
-    SummedBuffer windowSummed() const { return {&windowStats_, deviceParams_.windows_at ? leafCount_ : 0, {2, 2, 2, 2, 1}}; }
+    SummedBuffer windowSummed() const { return {&windowStats_, deviceParams_.windows_at ? trees_.size() : 0, {2, 2, 1}}; }
     std::size_t deviceBytes() const { return deviceBytes_; }
 
     // After a pass: statistics into the totals, trees refined, new tables up, statistics cleared.
@@ -157,19 +157,9 @@ private:
     // A slot's tree: nodes with four children each (>= 0: a node, < 0: leaf ~c), node 0 the root.
     struct Leaf {
         double sumSq = 0.0, connections = 0.0;  // S(b) and contributions, over all passes
-        // with weight windows, over all passes: the luminance delivered after leaving through the
-        // leaf and its square, the weight's luminance over A_pix as it arrived at the vertex and its
-        // square, and how many left (fen_guide.h)
-        double delivered = 0.0, deliveredSq = 0.0, arrived = 0.0, arrivedSq = 0.0, visits = 0.0;
         // Every total above, in the order a checkpoint keeps them (save(), load()).
-        std::array<double*, 7> totals()
-        {
-            return {&sumSq, &connections, &delivered, &deliveredSq, &arrived, &arrivedSq, &visits};
-        }
-        std::array<double, 7> totals() const
-        {
-            return {sumSq, connections, delivered, deliveredSq, arrived, arrivedSq, visits};
-        }
+        std::array<double*, 2> totals() { return {&sumSq, &connections}; }
+        std::array<double, 2> totals() const { return {sumSq, connections}; }
         void scaleTotals(double f)
         {
             for (double* v : totals())
@@ -182,6 +172,12 @@ private:
     struct Tree {
         std::vector<std::array<std::int32_t, 4>> nodes;
         std::vector<Leaf> leaves;
+        // With weight windows, over all passes: the luminance delivered after leaving a first vertex
+        // in the slot, the weight's luminance over A_pix as it arrived there, each to the rule's
+        // power, and how many left (fen_guide.h); in the order a checkpoint keeps them.
+        double delivered = 0.0, arrived = 0.0, visits = 0.0;
+        std::array<double*, 3> windowTotals() { return {&delivered, &arrived, &visits}; }
+        std::array<double, 3> windowTotals() const { return {delivered, arrived, visits}; }
         std::vector<std::uint32_t> alias;  // the learned table's columns (threshold, alias)
         std::uint32_t aliasShift = 31;
         bool learned = false;
@@ -220,7 +216,8 @@ private:
     std::size_t leafCapacity_ = 0, nodeCapacity_ = 0, columnCapacity_ = 0;
     std::size_t leafCount_ = 0, deferredSplits_ = 0, lastSplits_ = 0;
     // The tables' sections as uploaded (fen_guide.h), each as long as it is used.
-    std::vector<std::uint32_t> records_, spatialWords_, nodeWords_, leafWords_, columnWords_, windowWords_;
+    std::vector<std::uint32_t> records_, spatialWords_, nodeWords_, leafWords_, columnWords_, windowWords_,
+        leafSlotWords_;
     std::size_t windowSlots_ = 0;  // slots with a window, after rebuild()
     double windowTarget_ = 0.0;    // T, in units of the delivered statistic, after rebuild()
     std::uint32_t learnedSlots_ = 0, candidateSlots_ = 0, maxDepthSeen_ = 0;

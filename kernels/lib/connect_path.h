@@ -10,8 +10,9 @@
  * see the contribution times its pixel's factor in stats_pixel_scale (the adaptive strategy's
  * relative target, DESIGN.md §3.3): steering only, never the image. A connection that carries a
  * first-bounce guide record (c->guide.x > 0) adds its luminance to that box's statistics in
- * guide_stats (lib/guide.h), whatever the strategy, and with weight windows (c->guide.z > 0) to its
- * window statistics in window_stats (c->guide.z: their scale). Requires lib/bvh_traverse.h
+ * guide_stats (lib/guide.h), whatever the strategy, and with weight windows (c->guide.z > 0) to the
+ * window statistics of the first vertex's slot in window_stats (c->guide.z: their scale; c->guide.w:
+ * the slot and the power). Requires lib/bvh_traverse.h
  * (FEN_BVH_WIDTH).
  */
 #ifndef FEN_CONNECT_PATH_H
@@ -37,7 +38,7 @@ static inline void connect_path(global const RenderParams* params, const Connect
         const float3 value = c->value.xyz * trans;
         if (c->guide.x > 0.0f)
             guide_record(guide_stats, window_stats, c->guide.x, as_uint(c->guide.y), rgb_luminance(value),
-                         c->guide.z, counters);
+                         c->guide.z, as_uint(c->guide.w), counters);
 #ifdef FEN_EMISSION_STATS
         const uint part = as_uint(c->value.w);
         if (!(part & FEN_PART_ESTIMATE_ONLY))

@@ -25,7 +25,7 @@
 typedef struct {
     global const GuideParams* params;
     global const uint* tables;  /* slot records, nodes, leaves, alias columns (fen_guide.h) */
-    volatile global ulong* window_stats; /* per leaf (fen_guide.h): the weight windows' sums */
+    volatile global ulong* window_stats; /* per slot (fen_guide.h): the weight windows' sums */
 } Guide;
 
 /* The slot of a vertex at x whose light arrived on side n (unit): the spatial leaf x lies in and
@@ -110,18 +110,21 @@ static inline float2 guide_sample(const Guide* g, uint4 r, RngBlock bits, uint* 
 
 /* Adds a camera contribution of luminance y, made after the path left a guided vertex (its record
    g, key), to that leaf's statistics: (y g)^2, g already holding the fixed-point scale; and with
-   weight windows (delivered_scale > 0: the window statistics' scale) y and y^2 at that scale to the
-   leaf's window statistics, for the adjoint the windows follow. */
+   weight windows (delivered_scale > 0: the window statistics' scale) y at that scale, or its square
+   (window & FEN_GUIDE_WINDOW_SQUARED), to the window statistics of the vertex's slot (the rest of
+   window), for the adjoint the windows follow. */
 static inline void guide_record(volatile global ulong* guide_stats, volatile global ulong* window_stats, float g,
-                                uint key, float y, float delivered_scale, volatile global ulong* counters)
+                                uint key, float y, float delivered_scale, uint window,
+                                volatile global ulong* counters)
 {
     volatile global ulong* s = guide_stats + FEN_GUIDE_STATS_WORDS * (ulong)key;
     const float v = y * g;
-    volatile global ulong* w = window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)key;
+    volatile global ulong* w =
+        window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)(window & ~FEN_GUIDE_WINDOW_SQUARED);
     const float c = y * delivered_scale;
     if (!fixed_add128(s + FEN_GUIDE_SUMSQ_LO, v * v) ||
         (delivered_scale > 0.0f &&
-         (!fixed_add128(w + FEN_GUIDE_DELIVERED_LO, c) || !fixed_add128(w + FEN_GUIDE_DELIVERED_SQ_LO, c * c)))) {
+         !fixed_add128(w + FEN_GUIDE_DELIVERED_LO, (window & FEN_GUIDE_WINDOW_SQUARED) ? c * c : c))) {
         counter_add(counters, FEN_CTR_STATS_OVERFLOWS, 1);
         return;
     }
@@ -137,14 +140,21 @@ static inline float guide_window(const Guide* g, uint slot)
     return g->params->windows_at ? as_float(g->tables[g->params->windows_at + slot]) : 0.0f;
 }
 
-/* With weight windows: a path (or branch) whose weight arrived with luminance over A_pix a (at the
-   window statistics' scale) leaves its first diffuse vertex through leaf key -- the denominators of
-   the adjoint (delivered / arrived, or its second moment, delivered^2 / arrived^2) and of the
-   target (per visit). */
-static inline void guide_arrive(const Guide* g, uint key, float a, volatile global ulong* counters)
+/* With weight windows: the word a connection carries in Connection.guide.w for a path whose first
+   diffuse vertex left through leaf key: the leaf's slot, and whether the sums are of squares. */
+static inline uint guide_window_word(const Guide* g, uint key)
 {
-    volatile global ulong* s = g->window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)key;
-    if (!fixed_add128(s + FEN_GUIDE_ARRIVED_LO, a) || !fixed_add128(s + FEN_GUIDE_ARRIVED_SQ_LO, a * a)) {
+    return g->tables[g->params->leaf_slots_at + key] | (g->params->window_power == 2u ? FEN_GUIDE_WINDOW_SQUARED : 0u);
+}
+
+/* With weight windows: a path (or branch) whose weight arrived with luminance over A_pix a (at the
+   window statistics' scale) leaves its first diffuse vertex in slot `slot` -- the denominators of
+   the adjoint (delivered / arrived, or its second moment, delivered^2 / arrived^2: a to the power
+   the rule sums) and of the target (per visit). */
+static inline void guide_arrive(const Guide* g, uint slot, float a, volatile global ulong* counters)
+{
+    volatile global ulong* s = g->window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)slot;
+    if (!fixed_add128(s + FEN_GUIDE_ARRIVED_LO, g->params->window_power == 2u ? a * a : a)) {
         counter_add(counters, FEN_CTR_STATS_OVERFLOWS, 1);
         return;
     }

@@ -117,7 +117,7 @@ static inline int scatter_first(global const RenderParams* params, const Guide* 
         key = guide_leaf(guide, r, sq);
     }
     if (guide->params->windows_at)
-        guide_arrive(guide, key, rgb_luminance(p->beta.xyz) * window_units(params, cam), counters);
+        guide_arrive(guide, slot, rgb_luminance(p->beta.xyz) * window_units(params, cam), counters);
     const int alive = scatter_through(params, p, albedo, n, u, sq, d, next);
     const float y = rgb_luminance(p->beta.xyz);
     p->org.w = alive && y > 0.0f ? guide->params->stats_scale * cam->up.w / (y * d) : 0.0f;
@@ -210,10 +210,12 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
                     c->org = (float4)(o, as_float(pixel));
                     c->to_cam = (float4)(cam->position.xyz - o, 0.0f);
                     c->value = (float4)(value, p->beta.w); /* the emission cell */
-                    /* z: the window statistics' scale, 0 without windows */
+                    /* z: the window statistics' scale, 0 without windows; w: the first vertex's
+                       slot and power for them (a record, g > 0, names a leaf of the tables) */
+                    const int windows = guide->params->windows_at && p->org.w > 0.0f;
                     c->guide = (float4)(p->org.w, p->dir.w,
-                                        guide->params->windows_at ? params->fixed_scale * FEN_GUIDE_WINDOW_SCALE : 0.0f,
-                                        0.0f);
+                                        windows ? params->fixed_scale * FEN_GUIDE_WINDOW_SCALE : 0.0f,
+                                        as_float(windows ? guide_window_word(guide, as_uint(p->dir.w)) : 0u));
                 }
             }
         }

@@ -40,22 +40,25 @@
 #define FEN_GUIDE_SUMSQ_HI 1
 #define FEN_GUIDE_CONNECTIONS 2
 #define FEN_GUIDE_STATS_WORDS 3
-/* With weight windows (GuideParams.windows_at > 0), a second buffer of sums per leaf, the window
-   statistics, FEN_GUIDE_WINDOW_WORDS fen_u64 each, 128-bit fixed point at FEN_GUIDE_WINDOW_SCALE
-   times the film's RenderParams.fixed_scale (the squares at its square): 2^-20 leaves room for
-   the square of a contribution 2^43 times the film's reference luminance, and still registers one
-   of 2^-20 of it in the plain sums. */
+/* With weight windows (GuideParams.windows_at > 0), a second buffer of sums per slot (the windows
+   only ever use them per slot: a few hundred kB, where per leaf they were megabytes that every
+   connection's atomics missed the cache on), the window statistics, FEN_GUIDE_WINDOW_WORDS fen_u64
+   each, 128-bit fixed point at FEN_GUIDE_WINDOW_SCALE times the film's RenderParams.fixed_scale,
+   each value raised to GuideParams.window_power (1: rule `mean`, 2: rule `moment`, the squares at
+   the scale's square): 2^-20 leaves room for the square of a contribution 2^43 times the film's
+   reference luminance, and still registers one of 2^-20 of it in the plain sums. Only the power
+   the rule uses is summed: half the atomics of summing both. */
 #define FEN_GUIDE_WINDOW_SCALE 0x1p-20f
 #define FEN_GUIDE_DELIVERED_LO 0    /* the luminance C of each camera contribution a path made after */
-#define FEN_GUIDE_DELIVERED_HI 1    /*   leaving through the leaf */
-#define FEN_GUIDE_DELIVERED_SQ_LO 2 /* ... and C^2 */
-#define FEN_GUIDE_DELIVERED_SQ_HI 3
-#define FEN_GUIDE_ARRIVED_LO 4      /* the luminance of the weight each path that left through the */
-#define FEN_GUIDE_ARRIVED_HI 5      /*   leaf arrived at the vertex with, over A_pix (the camera's): a */
-#define FEN_GUIDE_ARRIVED_SQ_LO 6   /*   number of C's magnitude; and its square */
-#define FEN_GUIDE_ARRIVED_SQ_HI 7
-#define FEN_GUIDE_VISITS 8          /* paths (or branches) that left through the leaf */
-#define FEN_GUIDE_WINDOW_WORDS 9
+#define FEN_GUIDE_DELIVERED_HI 1    /*   leaving a first diffuse vertex in the slot, to the power */
+#define FEN_GUIDE_ARRIVED_LO 2      /* the luminance of the weight each path that left a vertex there */
+#define FEN_GUIDE_ARRIVED_HI 3      /*   arrived with, over A_pix (the camera's): a number of C's
+                                       magnitude, to the power */
+#define FEN_GUIDE_VISITS 4          /* paths (or branches) that left a vertex there */
+#define FEN_GUIDE_WINDOW_WORDS 5
+/* Connection.guide.w with weight windows: the slot of the path's first diffuse vertex, with this
+   bit set when the window statistics sum squares (window_power 2) */
+#define FEN_GUIDE_WINDOW_SQUARED 0x80000000u
 
 /* A child word of a node: FEN_GUIDE_LEAF | global leaf index, or the global index of a node. */
 #define FEN_GUIDE_LEAF 0x80000000u
@@ -83,7 +86,9 @@
  *    window statistics' scale (FEN_GUIDE_WINDOW_SCALE fixed_scale), at which
  *    a path's expected contribution from this vertex on (rule `mean`), or the root of its second
  *    moment (rule `moment`), is the target's; 0 where the slot has not been seen enough, FLT_MAX
- *    where it was seen and never delivered (lib/guide.h guide_window). */
+ *    where it was seen and never delivered (lib/guide.h guide_window);
+ *  - with weight windows, one word per leaf: the slot whose tree holds it (a connection finds the
+ *    window statistics of the path's first vertex from the leaf its record names). */
 
 FEN_NS_BEGIN
 
@@ -102,13 +107,19 @@ typedef struct {
     fen_u32 windows_at;   /* weight windows: word offset of the per-slot window weights; 0: none */
     fen_f32 window_min_survival; /* a culled path survives with at least this probability */
     fen_u32 window_split_max;    /* a path splits into at most this many branches */
+    fen_u32 window_power;        /* the power of the values the window statistics sum: 1 (rule
+                                    `mean`) or 2 (rule `moment`) */
+    fen_u32 leaf_slots_at;       /* word offset of the leaves' slots (above); 0 without windows */
+    fen_u32 pad0;
+    fen_u32 pad1;
 } GuideParams;
-FEN_ASSERT_SIZE(GuideParams, 64);
+FEN_ASSERT_SIZE(GuideParams, 80);
 FEN_ASSERT_OFFSET(GuideParams, slots, 16);
 FEN_ASSERT_OFFSET(GuideParams, stats_scale, 32);
 FEN_ASSERT_OFFSET(GuideParams, every_vertex, 48);
 FEN_ASSERT_OFFSET(GuideParams, windows_at, 52);
 FEN_ASSERT_OFFSET(GuideParams, window_split_max, 60);
+FEN_ASSERT_OFFSET(GuideParams, leaf_slots_at, 68);
 
 FEN_NS_END
 

@@ -42,6 +42,7 @@
     X(GuideParams, every_vertex) \
     X(GuideParams, windows_at) \
     X(GuideParams, window_split_max) \
+    X(GuideParams, leaf_slots_at) \
     X(RenderParams, sun_dir) \
     X(RenderParams, path_end) \
     X(RenderParams, seed)    \

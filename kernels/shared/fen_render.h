@@ -134,7 +134,9 @@ typedef struct {
     fen_float4 value;   /* rgb: contribution to the pixel (cd/m^2 x paths) if nothing blocks it;
                            w: the path's beta.w (its emission cell) */
     fen_float4 guide;   /* the path's first-bounce guide record (PathState org.w, dir.w): x the
-                           factor g (0: none), y as_uint the global leaf (fen_guide.h) */
+                           factor g (0: none), y as_uint the global leaf (fen_guide.h); with
+                           weight windows z their statistics' scale (else 0), w as_uint the first
+                           vertex's slot | FEN_GUIDE_WINDOW_SQUARED (lib/guide.h guide_window_word) */
 } Connection;
 FEN_ASSERT_SIZE(Connection, 64);
 FEN_ASSERT_OFFSET(Connection, guide, 48);

@@ -169,21 +169,19 @@ TEST(GuideSampling, LearnedTableIsTheDocumentedMixtureAndTheDeviceDrawsIt)
     expectDrawsFollowTheTable(*ctx, g, 5);
 }
 
-// Writes the weight-window sums (fen_guide.h) of a slot's first leaf: delivered, arrived (whole
-// fixed-point units), their squares' sums as delivered^2 and arrived^2 (so that per slot the
-// moment rule's ratio is the square of the mean rule's), and visits.
-void writeWindowSums(ocl::Context& ctx, const FirstBounceGuide& g, std::uint32_t slot, std::uint64_t delivered,
-                     std::uint64_t arrived, std::uint64_t visits)
+// Writes the weight-window sums (fen_guide.h) of a slot as the device sums them for the rule's
+// power: delivered and arrived (whole fixed-point units) to that power, and visits (so that per slot
+// the moment rule's ratio is the square of the mean rule's).
+void writeWindowSums(ocl::Context& ctx, const FirstBounceGuide& g, GuideOptions::WindowRule rule, std::uint32_t slot,
+                     std::uint64_t delivered, std::uint64_t arrived, std::uint64_t visits)
 {
+    const bool squared = rule == GuideOptions::WindowRule::Moment;
     std::vector<std::uint64_t> words(FEN_GUIDE_WINDOW_WORDS, 0);
-    words[FEN_GUIDE_DELIVERED_LO] = delivered;
-    words[FEN_GUIDE_DELIVERED_SQ_LO] = delivered * delivered;
-    words[FEN_GUIDE_ARRIVED_LO] = arrived;
-    words[FEN_GUIDE_ARRIVED_SQ_LO] = arrived * arrived;
+    words[FEN_GUIDE_DELIVERED_LO] = squared ? delivered * delivered : delivered;
+    words[FEN_GUIDE_ARRIVED_LO] = squared ? arrived * arrived : arrived;
     words[FEN_GUIDE_VISITS] = visits;
-    ctx.queue().enqueueWriteBuffer(g.windowStats(), CL_TRUE,
-                                   std::size_t{g.leaves(slot)[0].index} * FEN_GUIDE_WINDOW_WORDS * 8, words.size() * 8,
-                                   words.data());
+    ctx.queue().enqueueWriteBuffer(g.windowStats(), CL_TRUE, std::size_t{slot} * FEN_GUIDE_WINDOW_WORDS * 8,
+                                   words.size() * 8, words.data());
 }
 
 // The windows from the sums writeWindowSums() leaves, per rule; returns the first six slots'.
@@ -196,16 +194,27 @@ std::vector<float> windowsOf(ocl::Context& ctx, GuideOptions::WindowRule rule, n
     FirstBounceGuide g(ctx, o, glm::dvec3(0.0), 8.0);
     // Slot 1 delivers 3 per unit of arriving weight, slot 2 a quarter; slot 3 was seen too few
     // times for a window; slot 4 often, and never delivered.
-    writeWindowSums(ctx, g, 1, 3000, 1000, 1000);
-    writeWindowSums(ctx, g, 2, 1000, 4000, 1000);
-    writeWindowSums(ctx, g, 3, 50, 10, 99);
-    writeWindowSums(ctx, g, 4, 0, 500, 1000);
+    writeWindowSums(ctx, g, rule, 1, 3000, 1000, 1000);
+    writeWindowSums(ctx, g, rule, 2, 1000, 4000, 1000);
+    writeWindowSums(ctx, g, rule, 3, 50, 10, 99);
+    writeWindowSums(ctx, g, rule, 4, 0, 500, 1000);
     g.learn();
     *report = g.report();
     dev::GuideParams p;
     ctx.queue().enqueueReadBuffer(g.params(), CL_TRUE, 0, sizeof p, &p);
     EXPECT_GT(p.windows_at, 0u);
     EXPECT_EQ(p.window_split_max, 16u);
+    EXPECT_EQ(p.window_power, rule == GuideOptions::WindowRule::Moment ? 2u : 1u);
+    // Every leaf's word names the slot whose tree holds it: a connection finds its path's window
+    // statistics by it (lib/guide.h guide_window_word).
+    for (std::uint32_t slot : {0u, 1u, 5u, static_cast<std::uint32_t>(g.slotCount() - 1)}) {
+        for (const auto& leaf : g.leaves(slot)) {
+            std::uint32_t word = 0;
+            ctx.queue().enqueueReadBuffer(g.tables(), CL_TRUE, (std::size_t{p.leaf_slots_at} + leaf.index) * 4, 4,
+                                          &word);
+            EXPECT_EQ(word, slot) << "leaf " << leaf.index;
+        }
+    }
     std::vector<float> w(6);
     ctx.queue().enqueueReadBuffer(g.tables(), CL_TRUE, std::size_t{p.windows_at} * 4, w.size() * 4, w.data());
     // The totals survive a checkpoint: the reloaded guide makes the same windows.
@@ -216,6 +225,16 @@ std::vector<float> windowsOf(ocl::Context& ctx, GuideOptions::WindowRule rule, n
     h.load(in);
     EXPECT_EQ(h.report()["window_target"], (*report)["window_target"]);
     std::vector<float> v(6);
+    ctx.queue().enqueueReadBuffer(h.tables(), CL_TRUE, std::size_t{p.windows_at} * 4, v.size() * 4, v.data());
+    EXPECT_EQ(v, w);
+    // The totals belong to the slot, not to its leaves: when slot 1's tree refines (a bright leaf),
+    // its window and the target stay.
+    std::vector<double> r(64, 0.5);
+    r[9] = 1e3;
+    writeSlot(ctx, h, 1, r, 100);
+    h.learn();
+    EXPECT_GT(h.leaves(1).size(), 64u) << "slot 1 refined";
+    EXPECT_EQ(h.report()["window_target"], (*report)["window_target"]);
     ctx.queue().enqueueReadBuffer(h.tables(), CL_TRUE, std::size_t{p.windows_at} * 4, v.size() * 4, v.data());
     EXPECT_EQ(v, w);
     return w;
@@ -441,12 +460,16 @@ TEST(GuideSampling, StateThatDoesNotDescribeTreesIsAnErrorNamingTheField)
     o.voxelsAcross = 1;  // 8 voxels
     FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
     const auto attempt = [&](const std::vector<std::uint64_t>& space, const std::vector<std::uint64_t>& slots,
-                             const std::vector<std::uint64_t>& shape, const std::vector<double>& leaves) {
+                             const std::vector<std::uint64_t>& shape, const std::vector<double>& leaves,
+                             std::vector<double> windows = {}) {
+        if (windows.empty())
+            windows.assign(3 * slots.size(), 0.0);
         StateWriter w;
         w.u64s("guide.space", space);
         w.u64s("guide.slots", slots);
         w.u64s("guide.shape", shape);
         w.f64s("guide.leaves", leaves);
+        w.f64s("guide.windows", windows);
         w.u64s("guide.splits", {0, 0, 0, 0});
         StateReader r(w.bytes(), "bad.ckpt");
         try {
@@ -475,13 +498,15 @@ TEST(GuideSampling, StateThatDoesNotDescribeTreesIsAnErrorNamingTheField)
     EXPECT_NE(attempt(good, {3}, {1, 1, 1, 1}, {}).find("guide.shape"), std::string::npos) << "a shape cut short";
     std::vector<std::uint64_t> leafy(4, 0);
     EXPECT_NE(attempt(good, {3}, leafy, {1.0, 1.0}).find("guide.leaves"), std::string::npos) << "3 leaves missing";
-    // seven totals a leaf (S, contributions, and the weight windows' delivered, its square,
-    // arrived, its square, visits)
-    std::vector<double> totals(28, 0.0);
+    // two totals a leaf (S, contributions)
+    std::vector<double> totals(8, 0.0);
     totals[0] = totals[1] = 1.0;
     std::vector<double> negative = totals;
-    negative[11] = -1.0;  // the second leaf's windows' arrived
+    negative[3] = -1.0;  // the second leaf's contributions
     EXPECT_NE(attempt(good, {3}, leafy, negative).find("guide.leaves"), std::string::npos);
+    // three window totals a listed slot (delivered, arrived, visits)
+    EXPECT_NE(attempt(good, {3}, leafy, totals, {1.0, -1.0, 1.0}).find("guide.windows"), std::string::npos);
+    EXPECT_NE(attempt(good, {3}, leafy, totals, {1.0, 1.0}).find("guide.windows"), std::string::npos);
     // The guide is still whole after the failures: the last good state loads.
     EXPECT_EQ(attempt(good, {3}, leafy, totals), "");
     EXPECT_EQ(g.leaves(3).size(), 4u);
