@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Weight windows (--adaptive-window) against adaptive as it is by default, at equal time.
+"""Weight windows (--adaptive-window) against adaptive without them, at equal time.
 
 For each scene and seed, the variants run one after another (interleaved, so that a busy machine
 slows them alike), adaptive emission, the same seed, the same time; efficiency of a variant =
-(noise_default^2 * seconds_default) / (noise^2 * seconds), noise = the JSON's
+(noise_off^2 * seconds_off) / (noise^2 * seconds), noise = the JSON's
 noise_std_err_cd_m2 (the per-pixel standard error over the ROI). Prints one line per render and
 the median efficiency per scene and variant; every line also goes to --data.
 
@@ -11,8 +11,8 @@ the median efficiency per scene and variant; every line also goes to --data.
         --variants off,mean,mean_cull50,mean_cull05 --width 160 --time 20 --out out/window \\
         --data docs/results/window_data.txt
 
-Variants (--variants, comma-separated names): off (the default: no windows); mean and moment (the
-two rules' windows, splitting and never culling); mean_cull50, moment_cull50 (also culling, the
+Variants (--variants, comma-separated names): off (no windows); mean and moment (the
+two rules' windows, splitting and never culling; moment is the default); mean_cull50, moment_cull50 (also culling, the
 survival at least 0.5) and mean_cull05, moment_cull05 (at least 0.05). Any other option set is a
 variant of its own with --variant NAME 'OPTIONS' (repeatable; then list NAME in --variants), e.g.
 
@@ -26,7 +26,7 @@ import statistics
 import subprocess
 import sys
 
-VARIANTS = {"off": []}
+VARIANTS = {"off": ["--adaptive-window", "off"]}
 for rule in ("mean", "moment"):
     VARIANTS[rule] = ["--adaptive-window", rule]  # split, never cull (the default survival, 1)
     VARIANTS[rule + "_cull50"] = ["--adaptive-window", rule, "--adaptive-window-survival", "0.5"]

@@ -65,7 +65,7 @@ public:
         render.add_option("--adaptive-guide-vertices", guideVertices_,
                           "With adaptive --adaptive-guide on: the diffuse vertices the guide draws at, first (default) or every");
         render.add_option("--adaptive-window", window_,
-                          "With adaptive --adaptive-guide on: weight windows -- split or cull a path at its first diffuse vertex by its expected contribution (mean) or the root of its second moment (moment), or off (default)");
+                          "With adaptive --adaptive-guide on: weight windows -- split or cull a path at its first diffuse vertex by the root of its second moment of contributions (moment, the default) or its expected contribution (mean), or off");
         render.add_option("--adaptive-window-split", windowSplit_,
                           "With adaptive --adaptive-window mean|moment: most branches a path splits into, 2..1024 (default 16)");
         render.add_option("--adaptive-window-survival", windowSurvival_,
@@ -128,6 +128,8 @@ public:
                 throw Error(cat("--adaptive-window '", printable(*window_, 40), "': expected off, mean or moment"));
             a.guide.window = *window_ != "off";
             a.guide.windowRule = *window_ == "moment" ? GuideOptions::WindowRule::Moment : GuideOptions::WindowRule::Mean;
+        } else if (!a.guide.enabled) {
+            a.guide.window = false;  // the default windows go with the guide they are learned on
         }
         a.guide.windowSplitMax = windowSplit_.value_or(a.guide.windowSplitMax);
         a.guide.windowMinSurvival = windowSurvival_.value_or(a.guide.windowMinSurvival);

@@ -97,10 +97,12 @@ struct GuideOptions {
     // root mean square over all paths) -- decides: a ratio of 2 or more splits the path into
     // min(floor(ratio), windowSplitMax) branches; one below 1/2 survives with probability
     // max(ratio, windowMinSurvival), its weight over that. Learned on the guide's passes; a slot
-    // with fewer than windowMinVisits visits has no window (the fixed rules apply there).
+    // with fewer than windowMinVisits visits has no window (the fixed rules apply there). On by
+    // default with rule Moment, splitting only: measured at equal time on every shipped scene, it
+    // gained or held (docs/results/guiding.md, "Weight windows").
     enum class WindowRule { Mean, Moment };
-    bool window = false;
-    WindowRule windowRule = WindowRule::Mean;
+    bool window = true;
+    WindowRule windowRule = WindowRule::Moment;
     int windowSplitMax = 16;
     double windowMinSurvival = 1.0;  // 1: never culled (culling lost where measured: docs/results/guiding.md)
     double windowMinVisits = 256.0;
@@ -109,6 +111,7 @@ struct GuideOptions {
     {
         GuideOptions o;
         o.enabled = false;
+        o.window = false;
         return o;
     }
 };

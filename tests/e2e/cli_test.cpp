@@ -409,6 +409,9 @@ TEST(CliRender, AdaptiveReportsItsGrid)
             EXPECT_EQ(e["portal_nodes"], nlohmann::json({"window", "door_frame"}));
         }
         EXPECT_EQ(e["target"], "absolute");
+        // weight windows, rule moment, splitting only, by default (DESIGN.md §3.4)
+        EXPECT_EQ(e["guide"]["window"], "moment");
+        EXPECT_EQ(e["guide"]["window_min_survival"], 1.0);
     }
     // The relative target is what it says, and as deterministic as the absolute one: the same
     // image whatever the pool size, though its statistics follow the image estimate pass by pass.
@@ -519,7 +522,10 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
                 "--adaptive-window-split 1");
     expectError(run("render " + good + out + " --adaptive-window moment --adaptive-window-survival 0"), 1,
                 "--adaptive-window-survival 0");
-    expectError(run("render " + good + out + " --adaptive-window-split 8"), 1, "--adaptive-window-split and");
+    expectError(run("render " + good + out + " --adaptive-window off --adaptive-window-split 8"), 1,
+                "--adaptive-window-split and");
+    expectError(run("render " + good + out + " --adaptive-guide off --adaptive-window-survival 0.5"), 1,
+                "--adaptive-window-split and");
     expectError(run("render " + good + out + " --adaptive-window mean --adaptive-guide off"), 1,
                 "--adaptive-window: needs");
     // splitting: a count of branches, a positive weight unit -- never silently the default

@@ -431,7 +431,7 @@ TEST(GuideSampling, AGuideSplitToItsCapacityResumesFromItsOwnCheckpoint)
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     GuideOptions o = options();
     o.voxelsAcross = 1;  // 8 voxels
-    o.memoryMiB = 2.0;   // room for about 100 spatial leaves
+    o.memoryMiB = 2.0;   // room for about 100 spatial leaves (94 with the default weight windows' bytes)
     FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
     // Every slot steers (its light through one corner leaf) and gathers enough to split, pass
     // after pass, until the memory stops it.
@@ -445,7 +445,10 @@ TEST(GuideSampling, AGuideSplitToItsCapacityResumesFromItsOwnCheckpoint)
         g.learn();
     }
     const auto report = g.report();
-    EXPECT_GT(g.spatialLeaves(), 80u) << "most of the capacity used by spatial splits";
+    // a spatial leaf holds at least six slots of the initial 64 leaves
+    const double spatialCapacity = static_cast<double>(g.leafCapacity()) / (FEN_GUIDE_SIDES * 64.0);
+    EXPECT_GT(static_cast<double>(g.spatialLeaves()), 0.78 * spatialCapacity)
+        << "most of the capacity used by spatial splits";
     EXPECT_GT(report["spatial_splits_deferred"].get<std::size_t>() + report["splits_deferred"].get<std::size_t>(), 0u);
     const auto h = resumed(*ctx, o, g);
     EXPECT_EQ(h->slotCount(), g.slotCount());
