@@ -213,25 +213,28 @@ def charts(out, results, summary):
         ax.loglog(tn, [p["noise_std_err_cd_m2"] for p in j["progress"] if "noise_std_err_cd_m2" in p], "--",
                   color=c, alpha=0.6)
     ax.set_xlabel("seconds")
-    ax.set_ylabel("error (cd/m²): RMSE vs reference —, noise estimate - -")
+    ax.set_ylabel("error (cd/m²): RMSE vs reference —, noise estimate - -", fontsize=8)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
+    # below the axes: a method's label may be long (its options), and must not hide a curve
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), fontsize=8, frameon=False)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "error_vs_time.png"), dpi=100)
+    fig.savefig(os.path.join(out, "error_vs_time.png"), dpi=100, bbox_inches="tight")
     plt.close(fig)
 
     fig, ax = plt.subplots(figsize=(7, 3.5))
-    bars = ax.bar([s["method"] for s in summary], [s["relative_efficiency"] for s in summary],
+    names = [s["method"].replace("+", "\n+") for s in summary]  # one option a line
+    bars = ax.bar(names, [s["relative_efficiency"] for s in summary],
                   color=[colours[k % len(colours)] for k in range(len(summary))])
     for b, s in zip(bars, summary):
         if s["biased"]:
             b.set_hatch("//")
             b.set_alpha(0.5)
             ax.annotate("biased", (b.get_x() + b.get_width() / 2, b.get_height()), ha="center", va="bottom")
-    ax.set_ylabel("efficiency 1/(RMSE² × s), best unbiased = 1")
+    ax.set_ylabel("efficiency 1/(RMSE² × s), best unbiased = 1", fontsize=8)
     ax.set_yscale("log")
+    ax.tick_params(axis="x", labelsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "efficiency.png"), dpi=100)
+    fig.savefig(os.path.join(out, "efficiency.png"), dpi=100, bbox_inches="tight")
     plt.close(fig)
 
     n = len(summary)
