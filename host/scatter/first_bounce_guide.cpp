@@ -29,7 +29,7 @@ static_assert(FEN_GUIDE_MAX_DEPTH <= 14, "a leaf's corner has 14 bits per axis")
 constexpr double kBytesPerLeaf = 8.0 * FEN_GUIDE_STATS_WORDS + 8.0 + 16.0 + 16.0 / 3.0;
 constexpr double kMiB = 1024.0 * 1024.0;
 constexpr std::size_t kSavedPerLeaf = 2;  // a leaf's totals in a checkpoint: Leaf::totals()
-constexpr std::size_t kSavedPerWindow = 3;  // a slot's window totals in a checkpoint: Tree::windowTotals()
+constexpr std::size_t kSavedPerWindow = 3;  // a slot's window totals in a checkpoint: WindowTotals::totals()
 // Device bytes per slot with weight windows: its statistics and its window word.
 constexpr double kWindowBytesPerSlot = 8.0 * FEN_GUIDE_WINDOW_WORDS + 4.0;
 
@@ -270,9 +270,7 @@ std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
             continue;
         const Tree& old = trees_[s];
         Tree t;
-        const auto window = old.windowTotals();  // the slot's, whatever its leaves
-        for (std::size_t k = 0; k < window.size(); ++k)
-            *t.windowTotals()[k] = window[k];
+        t.window = old.window;
         std::function<std::int32_t(std::int32_t)> copy = [&](std::int32_t n) {
             const auto at = static_cast<std::int32_t>(t.nodes.size());
             t.nodes.push_back({});
@@ -431,8 +429,8 @@ void FirstBounceGuide::rebuildWindows()
     const bool moment = opt_.windowRule == GuideOptions::WindowRule::Moment;
     double allDelivered = 0.0, allVisits = 0.0;
     for (const Tree& t : trees_) {
-        allDelivered += t.delivered;
-        allVisits += t.visits;
+        allDelivered += t.window.delivered;
+        allVisits += t.window.visits;
     }
     windowWords_.assign(trees_.size(), 0u);
     if (!(allDelivered > 0.0))
@@ -440,9 +438,9 @@ void FirstBounceGuide::rebuildWindows()
     windowTarget_ = allDelivered / allVisits;  // T S, or tau^2 S^2
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
-        if (t.visits < opt_.windowMinVisits || !(t.arrived > 0.0))
+        if (t.window.visits < opt_.windowMinVisits || !(t.window.arrived > 0.0))
             continue;
-        const double ratio = t.delivered > 0.0 ? windowTarget_ * t.arrived / t.delivered : 0.0;
+        const double ratio = t.window.delivered > 0.0 ? windowTarget_ * t.window.arrived / t.window.delivered : 0.0;
         const double w = moment ? std::sqrt(ratio) : ratio;
         windowWords_[s] = floatBits(w > 0.0 && w < 3e38 ? static_cast<float>(w) : std::numeric_limits<float>::max());
         ++windowSlots_;
@@ -555,8 +553,7 @@ std::size_t FirstBounceGuide::refineSpace(const std::vector<double>& passConnect
             Tree& t = trees_[FEN_GUIDE_SIDES * c.leaf + k];
             for (Leaf& l : t.leaves)
                 l.scaleTotals(0.5);
-            for (double* v : t.windowTotals())
-                *v *= 0.5;
+            t.window.scale(0.5);
             trees_.push_back(t);  // the upper half's slot FEN_GUIDE_SIDES upper + k
         }
         leafCount_ += leaves;
@@ -593,9 +590,9 @@ void FirstBounceGuide::learn()
         if (ww) {
             // the window's sums, at their scale (the squares at its square): rebuildWindows()
             Tree& t = trees_[s];
-            t.delivered += fixed128(ww + FEN_GUIDE_DELIVERED_LO);
-            t.arrived += fixed128(ww + FEN_GUIDE_ARRIVED_LO);
-            t.visits += static_cast<double>(ww[FEN_GUIDE_VISITS]);
+            t.window.delivered += fixed128(ww + FEN_GUIDE_DELIVERED_LO);
+            t.window.arrived += fixed128(ww + FEN_GUIDE_ARRIVED_LO);
+            t.window.visits += static_cast<double>(ww[FEN_GUIDE_VISITS]);
             ww += FEN_GUIDE_WINDOW_WORDS;
         }
     }
@@ -635,7 +632,7 @@ void FirstBounceGuide::save(StateWriter& w) const
     std::vector<double> leaves, windows;
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
-        const bool seen = t.visits > 0.0 || std::any_of(t.leaves.begin(), t.leaves.end(), [](const Leaf& l) {
+        const bool seen = t.window.visits > 0.0 || std::any_of(t.leaves.begin(), t.leaves.end(), [](const Leaf& l) {
                               return l.sumSq > 0.0 || l.connections > 0.0;
                           });
         if (!seen && isInitial(t))
@@ -654,7 +651,7 @@ void FirstBounceGuide::save(StateWriter& w) const
             const auto v = l.totals();
             leaves.insert(leaves.end(), v.begin(), v.end());
         }
-        const auto v = t.windowTotals();
+        const auto v = t.window.totals();
         windows.insert(windows.end(), v.begin(), v.end());
     }
     w.u64s("guide.space", spaceShape());
@@ -750,9 +747,9 @@ void FirstBounceGuide::load(StateReader& r)
             }
         };
         parse(0, 0, 0);
-        static_assert(std::tuple_size<decltype(t.windowTotals())>::value == kSavedPerWindow);
+        static_assert(std::tuple_size<decltype(t.window.totals())>::value == kSavedPerWindow);
         std::size_t windowAt = kSavedPerWindow * k;
-        for (double* v : t.windowTotals()) {
+        for (double* v : t.window.totals()) {
             *v = r.finite("guide.windows", windows[windowAt++]);
             if (*v < 0.0)
                 r.fail("guide.windows", "a negative sum or count");
@@ -799,7 +796,7 @@ nlohmann::json FirstBounceGuide::report() const
             checksum.value(l.depth);
         }
         if (opt_.window)
-            checksum.value(t.visits);
+            checksum.value(t.window.visits);
         checksum.value(t.learned);
     }
     const double used = trees_.size() * 16.0 + leafCount_ * kBytesPerLeaf + 4.0 * voxelWord_.size() +

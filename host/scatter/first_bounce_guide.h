@@ -172,15 +172,24 @@ private:
         std::uint32_t x0 = 0, y0 = 0, depth = 0;  // corner in 2^-FEN_GUIDE_MAX_DEPTH units
         double area() const { return std::ldexp(1.0, -2 * static_cast<int>(depth)); }
     };
+    // With weight windows, a slot's totals over all passes: the luminance delivered after leaving a
+    // first vertex there, the weight's luminance over A_pix as it arrived, each to the rule's power,
+    // and how many left (fen_guide.h).
+    struct WindowTotals {
+        double delivered = 0.0, arrived = 0.0, visits = 0.0;
+        // Every total above, in the order a checkpoint keeps them (save(), load()).
+        std::array<double*, 3> totals() { return {&delivered, &arrived, &visits}; }
+        std::array<double, 3> totals() const { return {delivered, arrived, visits}; }
+        void scale(double f)
+        {
+            for (double* v : totals())
+                *v *= f;
+        }
+    };
     struct Tree {
         std::vector<std::array<std::int32_t, 4>> nodes;
         std::vector<Leaf> leaves;
-        // With weight windows, over all passes: the luminance delivered after leaving a first vertex
-        // in the slot, the weight's luminance over A_pix as it arrived there, each to the rule's
-        // power, and how many left (fen_guide.h); in the order a checkpoint keeps them.
-        double delivered = 0.0, arrived = 0.0, visits = 0.0;
-        std::array<double*, 3> windowTotals() { return {&delivered, &arrived, &visits}; }
-        std::array<double, 3> windowTotals() const { return {delivered, arrived, visits}; }
+        WindowTotals window;  // the slot's, whatever its leaves
         std::vector<std::uint32_t> alias;  // the learned table's columns (threshold, alias)
         std::uint32_t aliasShift = 31;
         bool learned = false;
