@@ -134,7 +134,9 @@ public:
         a.guide.windowSplitMax = windowSplit_.value_or(a.guide.windowSplitMax);
         a.guide.windowMinSurvival = windowSurvival_.value_or(a.guide.windowMinSurvival);
         if ((windowSplit_ || windowSurvival_) && !a.guide.window)
-            throw Error("--adaptive-window-split and --adaptive-window-survival apply with --adaptive-window mean or moment");
+            throw Error(cat(windowSplit_ ? "--adaptive-window-split" : "--adaptive-window-survival",
+                            ": applies with weight windows, which ",
+                            window_ ? "--adaptive-window off" : "--adaptive-guide off", " turns off"));
         if (a.guide.window && !a.guide.enabled)
             throw Error("--adaptive-window: needs --adaptive-guide on (the windows are learned with the guide)");
         validateAdaptiveOptions(a);

@@ -523,9 +523,9 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     expectError(run("render " + good + out + " --adaptive-window moment --adaptive-window-survival 0"), 1,
                 "--adaptive-window-survival 0");
     expectError(run("render " + good + out + " --adaptive-window off --adaptive-window-split 8"), 1,
-                "--adaptive-window-split and");
+                "--adaptive-window-split: applies with weight windows, which --adaptive-window off turns off");
     expectError(run("render " + good + out + " --adaptive-guide off --adaptive-window-survival 0.5"), 1,
-                "--adaptive-window-split and");
+                "--adaptive-window-survival: applies with weight windows, which --adaptive-guide off turns off");
     expectError(run("render " + good + out + " --adaptive-window mean --adaptive-guide off"), 1,
                 "--adaptive-window: needs");
     // splitting: a count of branches, a positive weight unit -- never silently the default
