@@ -3,7 +3,7 @@
 
 For each scene and seed, the variants run one after another (interleaved, so that a busy machine
 slows them alike), adaptive emission, the same seed, the same time; efficiency of a variant =
-(noise_off^2 * seconds_off) / (noise^2 * seconds), noise = the JSON's
+(noise_b^2 * seconds_b) / (noise^2 * seconds), b the --baseline variant (off); noise = the JSON's
 noise_std_err_cd_m2 (the per-pixel standard error over the ROI). Prints one line per render and
 the median efficiency per scene and variant; every line also goes to --data.
 
@@ -18,6 +18,9 @@ variant of its own with --variant NAME 'OPTIONS' (repeatable; then list NAME in 
 
     python3 scripts/window_study.py --variants off,ss1024 \\
         --variant ss1024 '--adaptive-guide-space-split 1024'
+
+`default` is the options as they are; with --baseline default another option is measured against
+them, e.g. --variants default,def03 --variant def03 '--adaptive-defensive 0.3' --baseline default.
 """
 import argparse
 import json
@@ -31,6 +34,7 @@ for rule in ("mean", "moment"):
     VARIANTS[rule] = ["--adaptive-window", rule]  # split, never cull (the default survival, 1)
     VARIANTS[rule + "_cull50"] = ["--adaptive-window", rule, "--adaptive-window-survival", "0.5"]
     VARIANTS[rule + "_cull05"] = ["--adaptive-window", rule, "--adaptive-window-survival", "0.05"]
+VARIANTS["default"] = []  # the default options as they are
 
 
 def main():
@@ -45,6 +49,7 @@ def main():
     ap.add_argument("--data", default=None, help="append every line to this file")
     ap.add_argument("--variant", nargs=2, action="append", default=[], metavar=("NAME", "OPTIONS"),
                     help="a variant of fenestra's own options, split at spaces")
+    ap.add_argument("--baseline", default="off", help="the variant the others' efficiency is over (default off)")
     ap.add_argument("--common", default="", help="options for every run, split at spaces (e.g. '--roi X0,Y0,X1,Y1')")
     a = ap.parse_args()
     for name, options in a.variant:
@@ -75,8 +80,8 @@ def main():
                         f"render {j['seconds']['render']:5.1f}s split {c['split_branches'] / 1e6:6.1f}M "
                         f"culls {c['window_culls'] / 1e6:6.1f}M "
                         f"window_slots {j['emission'].get('guide', {}).get('window_slots', 0)}")
-                if "off" in runs and v != "off":
-                    n0, t0 = runs["off"]
+                if a.baseline in runs and v != a.baseline:
+                    n0, t0 = runs[a.baseline]
                     n, t = runs[v]
                     e = (n0 * n0 * t0) / (n * n * t)
                     eff.setdefault((scene, v), []).append(e)
