@@ -77,9 +77,13 @@ void AdaptiveGrid::addPass(const std::vector<GridCell::Stats>& parts)
 // The prior's pseudo-path: base-weighted means over the visited cells, per path.
 void AdaptiveGrid::computePrior()
 {
-    double first = 0.0, second = 0.0, rate = 0.0, weight = 0.0;
+    double first = 0.0, second = 0.0, rate = 0.0, weight = 0.0, squares = 0.0, pooled = 0.0;
     for (const GridCell& c : cells_) {
         const GridCell::Stats t = c.total();
+        if (t.connections > 0.0) {
+            squares += c.base * t.sumSq / t.paths;
+            pooled += c.base * t.sum * t.sum / (t.paths * t.connections);
+        }
         if (t.paths > 0.0) {
             first += c.base * t.sum / t.paths;
             second += c.base * t.sumSq / t.paths;
@@ -90,17 +94,22 @@ void AdaptiveGrid::computePrior()
     priorFirst_ = weight > 0.0 ? first / weight : 0.0;
     priorSecond_ = weight > 0.0 ? second / weight : 0.0;
     priorRate_ = weight > 0.0 ? rate / weight : 0.0;
-    seen_ = learning_.estimate == GridEstimate::Pooled ? priorFirst_ > 0.0 && priorRate_ > 0.0
+    spread_ = pooled > 0.0 && squares > 0.0 ? squares / pooled : 1.0;
+    seen_ = learning_.estimate != GridEstimate::Squares ? priorFirst_ > 0.0 && priorRate_ > 0.0
                                                        : priorSecond_ > 0.0;
 }
 
 double AdaptiveGrid::secondMoment(const GridCell::Stats& s, double k) const
 {
-    if (learning_.estimate == GridEstimate::Pooled) {
-        const double first = s.sum + k * priorFirst_;
-        return first * first / ((s.paths + k) * (s.connections + k * priorRate_));
+    const double first = s.sum + k * priorFirst_;
+    const double pooled = first * first / ((s.paths + k) * (s.connections + k * priorRate_));
+    const double squares = (s.sumSq + k * priorSecond_) / (s.paths + k);
+    switch (learning_.estimate) {
+    case GridEstimate::Pooled: return pooled;
+    case GridEstimate::Squares: return squares;
+    case GridEstimate::Larger: return std::max(spread_ * pooled, squares);
     }
-    return (s.sumSq + k * priorSecond_) / (s.paths + k);
+    return pooled;
 }
 
 double AdaptiveGrid::value(const GridCell& c, const int* parts, int n, double baseShare) const

@@ -19,11 +19,20 @@
 //     light tracer's contributions are heavy-tailed (a path that happens to hit a wall next to the
 //     camera deposits 1 / d^2 more), so this is dominated by a few events and swings by orders of
 //     magnitude between neighbours;
-//   - `pooled` (the default): only the first moment S1 = sum Lambda, the paths n and the
-//     contributions c, and <sum Lambda^2> ~ g S1^2 / (n c) -- exact when the part's
-//     contributions are equal, with the spread factor g taken as common to all cells (it is
-//     mostly the camera's geometry, the same for every path that reaches a room), so it cancels in
-//     P. The sum of Lambda converges where the sum of squares does not.
+//   - `pooled`: only the first moment S1 = sum Lambda, the paths n and the contributions c, and
+//     <sum Lambda^2> ~ g S1^2 / (n c) -- exact when the part's contributions are equal, with the
+//     spread factor g taken as common to all cells (it is mostly the camera's geometry, the same
+//     for every path that reaches a room), so it cancels in P. The sum of Lambda converges where
+//     the sum of squares does not;
+//   - `larger` (the default): the larger of the two, max(g S1^2 / (n c), squares), g now the
+//     spread over all visited cells (sum of P_base squares / sum of P_base pooled figures, each
+//     per path). A cell whose light comes as rare large contributions -- most of its paths miss,
+//     a few get in and bounce on as fireflies -- has a spread far above the common one, and the
+//     pooled figure understates it by that much; an understated cell is drawn too rarely and its
+//     paths weigh too much, an overstated one only dilutes the others. So a cell is raised to its
+//     squares where they exceed its share of the common spread, and otherwise keeps the pooled
+//     figure's stability. Where every cell's contributions are even, both agree and g = 1.
+//     Measured: docs/results/guiding.md, "Cells judged by the larger estimate".
 // A cell's second moment is the mean of its parts', so a cell whose light is uneven (an opening's
 // edge) is not judged by a pooled figure that its dim parts dilute.
 // What the paper leaves open, decided here:
@@ -78,10 +87,10 @@ struct GridCell {
     double skyArea() const;    // 4^-skyDepth of the (s, t) square
 };
 
-enum class GridEstimate { Pooled, Squares };
+enum class GridEstimate { Pooled, Squares, Larger };
 
 struct GridLearning {
-    GridEstimate estimate = GridEstimate::Pooled;
+    GridEstimate estimate = GridEstimate::Larger;
     double defensive = 0.1;           // alpha
     double splitGain = 1.0 / 2048.0;  // of the objective
     std::uint32_t maxDepth = 10;
@@ -142,6 +151,7 @@ private:
     GridLearning learning_;
     SkySplit skySplit_;
     double priorFirst_ = 0.0, priorRate_ = 0.0, priorSecond_ = 0.0;  // per base path
+    double spread_ = 1.0;  // g: the squares over the pooled figures, over all visited cells
     bool seen_ = false;
     double totalPaths_ = 0.0, totalConnections_ = 0.0;
 };

@@ -33,7 +33,8 @@ public:
         render.add_option("--adaptive-max-sky-depth", maxSkyDepth_,
                           "With adaptive: finest sky direction boxes, 2^-depth of a side (default 6)");
         render.add_option("--adaptive-estimate", estimate_,
-                          "With adaptive: how a cell's second moment is estimated, pooled (default) or squares");
+                          "With adaptive: how a cell's second moment is estimated, larger (default: the larger of "
+                          "pooled and squares), pooled (from first moments) or squares");
         render.add_option("--adaptive-initial-depth", initialDepth_,
                           "With adaptive: origin boxes per region to start with, 4^depth (default 3)");
         render.add_option("--adaptive-max-depth", maxDepth_,
@@ -96,9 +97,17 @@ public:
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
             return;
-        if (estimate_)
-            a.estimate = choice("--adaptive-estimate", *estimate_, "pooled", "squares") ? GridEstimate::Pooled
-                                                                                         : GridEstimate::Squares;
+        if (estimate_) {
+            if (*estimate_ == "larger")
+                a.estimate = GridEstimate::Larger;
+            else if (*estimate_ == "pooled")
+                a.estimate = GridEstimate::Pooled;
+            else if (*estimate_ == "squares")
+                a.estimate = GridEstimate::Squares;
+            else
+                throw Error(cat("--adaptive-estimate '", printable(*estimate_, 40),
+                                "': expected larger, pooled or squares"));
+        }
         a.initialSkyDepth = initialSkyDepth_.value_or(a.initialSkyDepth);
         a.maxSkyDepth = maxSkyDepth_.value_or(a.maxSkyDepth);
         a.initialDepth = initialDepth_.value_or(a.initialDepth);

@@ -24,7 +24,7 @@ struct AdaptiveOptions {
     int maxDepth = 10;         // ... split down to 2^-depth of the region's side
     int initialSkyDepth = 1;   // sky directions: 4^depth boxes of (1 - cos(theta), phi / 2 pi) ...
     int maxSkyDepth = 6;       // ... split down to 2^-depth of each side
-    GridEstimate estimate = GridEstimate::Pooled;  // how <sum Lambda^2> is estimated per cell
+    GridEstimate estimate = GridEstimate::Larger;  // how <sum Lambda^2> is estimated per cell
     double defensive = 0.1;    // share of the base density in the mixture (alpha)
     double diskShare = 0.1;    // over a portal base: the disk's share of the base density (beta)
     double splitGain = 1.0 / 2048.0;  // split a cell when that lowers the learned objective this much

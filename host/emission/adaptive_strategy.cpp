@@ -356,7 +356,7 @@ public:
             {"first_pass_paths", opt_.firstPass},
             {"target", opt_.relativeTarget ? "relative" : "absolute"},
             {"defensive", opt_.defensive},
-            {"estimate", opt_.estimate == GridEstimate::Pooled ? "pooled" : "squares"},
+            {"estimate", opt_.estimate == GridEstimate::Pooled ? "pooled" : opt_.estimate == GridEstimate::Squares ? "squares" : "larger"},
             {"split_gain", opt_.splitGain},
             {"prior_paths", opt_.priorPaths},
             {"learn_seconds", learnSeconds_},

@@ -497,7 +497,7 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     expectError(run("render " + good + out + " --method adaptive --adaptive-first-pass 10"), 1, "--adaptive-first-pass");
     expectError(run("render " + good + out + " --method adaptive --adaptive-split 0"), 1, "--adaptive-split");
     expectError(run("render " + good + out + " --method adaptive --adaptive-estimate median"), 1,
-                "--adaptive-estimate");
+                "--adaptive-estimate 'median': expected larger, pooled or squares");
     expectError(run("render " + good + out + " --method adaptive --adaptive-max-cells 8"), 1, "--adaptive-max-cells 8");
     // the first-bounce guide: on or off, a share that keeps every direction drawable, a sane lattice
     expectError(run("render " + good + out + " --adaptive-guide maybe"), 1, "--adaptive-guide 'maybe'");

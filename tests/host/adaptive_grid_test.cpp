@@ -83,6 +83,7 @@ TEST(AdaptiveGrid, PooledEstimateReadsTheSpreadFromFirstMoments)
     // other as few large ones: the second moment (and P) is larger for the latter, by
     // sqrt(value ratio) = sqrt(10) with values 1 and 10.
     GridLearning l;
+    l.estimate = GridEstimate::Pooled;
     l.defensive = 1e-9;
     l.maxDepth = 2;
     l.maxSkyDepth = 1;
@@ -90,6 +91,51 @@ TEST(AdaptiveGrid, PooledEstimateReadsTheSpreadFromFirstMoments)
     feed(g, {even(1e6, 0.5, 1.0), even(1e6, 0.05, 10.0)});
     g.update();
     EXPECT_NEAR(g.cells()[1].prob / g.cells()[0].prob, std::sqrt(10.0), 1e-3);
+}
+
+TEST(AdaptiveGrid, LargerEstimateRaisesOnlyCellsHeavierThanTheirPooledFigure)
+{
+    // Four cells with the same mean flux per path (1, over half a connection a path). Cells 0-2
+    // deliver it evenly (Lambda^2 per connection = 1); cell 3 in a heavy tail, its squares 100
+    // times its pooled figure. The pooled estimate cannot tell them apart. `larger` scales the
+    // pooled figures by the spread g = sum base squares / sum base pooled = (3 * 0.5 + 50) / 2, so
+    // cells 0-2 read g * 0.5 and cell 3 its squares, 50: P3 / P0 = sqrt(50 / (0.5 g)).
+    auto heavy = [](double paths) {
+        std::vector<GridCell::Stats> p = even(paths, 0.5, 1.0);
+        for (GridCell::Stats& s : p)
+            s.sumSq *= 100.0;
+        return p;
+    };
+    for (GridEstimate e : {GridEstimate::Pooled, GridEstimate::Larger}) {
+        GridLearning l;
+        l.estimate = e;
+        l.defensive = 1e-9;
+        l.maxDepth = 2;
+        l.maxSkyDepth = 1;
+        AdaptiveGrid g = grid(cells(4), l);
+        feed(g, {even(1e8, 0.5, 1.0), even(1e8, 0.5, 1.0), even(1e8, 0.5, 1.0), heavy(1e8)});
+        g.update();
+        const double spread = (3 * 0.5 + 50.0) / 2.0;
+        const double expected = e == GridEstimate::Pooled ? 1.0 : std::sqrt(50.0 / (0.5 * spread));
+        EXPECT_NEAR(g.cells()[3].prob / g.cells()[0].prob, expected, 1e-4) << static_cast<int>(e);
+        EXPECT_NEAR(g.cells()[1].prob / g.cells()[0].prob, 1.0, 1e-9);
+    }
+    // Where every cell's contributions are even, squares and pooled figures agree, g = 1, and
+    // `larger` learns what `pooled` learns (up to the prior's pseudo-paths, lost in 10^10 paths).
+    std::vector<double> probs[2];
+    for (GridEstimate e : {GridEstimate::Pooled, GridEstimate::Larger}) {
+        GridLearning l;
+        l.estimate = e;
+        l.maxDepth = 2;
+        l.maxSkyDepth = 1;
+        AdaptiveGrid g = grid(cells(3), l);
+        feed(g, {even(1e10, 0.2, 5.0), even(1e10, 0.05, 40.0), even(1e10, 0.01, 3.0)});
+        g.update();
+        for (const GridCell& c : g.cells())
+            probs[e == GridEstimate::Larger].push_back(c.prob);
+    }
+    for (std::size_t i = 0; i < 3; ++i)
+        EXPECT_NEAR(probs[1][i] / probs[0][i], 1.0, 1e-6) << "cell " << i;
 }
 
 TEST(AdaptiveGrid, UnseenCellsGetTheBaseShareAndDarkCellsNeverDie)
