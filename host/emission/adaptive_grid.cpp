@@ -77,16 +77,14 @@ void AdaptiveGrid::addPass(const std::vector<GridCell::Stats>& parts)
 // The prior's pseudo-path: base-weighted means over the visited cells, per path.
 void AdaptiveGrid::computePrior()
 {
-    double first = 0.0, second = 0.0, rate = 0.0, weight = 0.0, squares = 0.0, pooled = 0.0;
+    double first = 0.0, second = 0.0, rate = 0.0, weight = 0.0, pooled = 0.0;
     for (const GridCell& c : cells_) {
         const GridCell::Stats t = c.total();
-        if (t.connections > 0.0) {
-            squares += c.base * t.sumSq / t.paths;
-            pooled += c.base * t.sum * t.sum / (t.paths * t.connections);
-        }
         if (t.paths > 0.0) {
             first += c.base * t.sum / t.paths;
             second += c.base * t.sumSq / t.paths;
+            if (t.connections > 0.0)
+                pooled += c.base * t.sum * t.sum / (t.paths * t.connections);
             rate += c.base * t.connections / t.paths;
             weight += c.base;
         }
@@ -94,7 +92,9 @@ void AdaptiveGrid::computePrior()
     priorFirst_ = weight > 0.0 ? first / weight : 0.0;
     priorSecond_ = weight > 0.0 ? second / weight : 0.0;
     priorRate_ = weight > 0.0 ? rate / weight : 0.0;
-    spread_ = pooled > 0.0 && squares > 0.0 ? squares / pooled : 1.0;
+    // g: the visited cells' squares over their pooled figures (a cell without connections has
+    // neither, so `second` is the squares' sum).
+    spread_ = pooled > 0.0 && second > 0.0 ? second / pooled : 1.0;
     seen_ = learning_.estimate != GridEstimate::Squares ? priorFirst_ > 0.0 && priorRate_ > 0.0
                                                        : priorSecond_ > 0.0;
 }

@@ -14,6 +14,11 @@ namespace fen {
 
 namespace {
 
+constexpr struct {
+    const char* name;
+    GridEstimate estimate;
+} kEstimates[] = {{"larger", GridEstimate::Larger}, {"pooled", GridEstimate::Pooled}, {"squares", GridEstimate::Squares}};
+
 // "on" | "off" style choices: the value, or a one-line error naming the option.
 bool choice(const std::string& option, const std::string& given, const char* yes, const char* no)
 {
@@ -98,15 +103,11 @@ public:
         if (!inUse)
             return;
         if (estimate_) {
-            if (*estimate_ == "larger")
-                a.estimate = GridEstimate::Larger;
-            else if (*estimate_ == "pooled")
-                a.estimate = GridEstimate::Pooled;
-            else if (*estimate_ == "squares")
-                a.estimate = GridEstimate::Squares;
-            else
+            const GridEstimate* e = estimateNamed(*estimate_);
+            if (!e)
                 throw Error(cat("--adaptive-estimate '", printable(*estimate_, 40),
                                 "': expected larger, pooled or squares"));
+            a.estimate = *e;
         }
         a.initialSkyDepth = initialSkyDepth_.value_or(a.initialSkyDepth);
         a.maxSkyDepth = maxSkyDepth_.value_or(a.maxSkyDepth);
@@ -161,6 +162,22 @@ private:
 };
 
 }  // namespace
+
+const char* estimateName(GridEstimate e)
+{
+    for (const auto& k : kEstimates)
+        if (k.estimate == e)
+            return k.name;
+    return "unknown";
+}
+
+const GridEstimate* estimateNamed(const std::string& name)
+{
+    for (const auto& k : kEstimates)
+        if (name == k.name)
+            return &k.estimate;
+    return nullptr;
+}
 
 void validateAdaptiveOptions(const AdaptiveOptions& o)
 {

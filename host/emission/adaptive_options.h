@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -39,6 +40,11 @@ struct AdaptiveOptions {
     // The first-bounce guide, learned on the same passes (DESIGN.md §3.4).
     GuideOptions guide;
 };
+
+// The name --adaptive-estimate and the JSON give an estimate, and the estimate a name gives
+// (nullptr for none): one table for both.
+const char* estimateName(GridEstimate e);
+const GridEstimate* estimateNamed(const std::string& name);
 
 // The option ranges, checked before anything is built (fen::Error naming the option, the value
 // and the range).

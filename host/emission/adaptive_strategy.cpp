@@ -13,6 +13,7 @@
 #include "bvh_build.h"
 #include "cl/launch.h"
 #include "emission/adaptive_grid.h"
+#include "emission/adaptive_options.h"
 #include "emission/emission_sphere.h"
 #include "emission/light_levels.h"
 #include "emission/portal_planes.h"
@@ -356,7 +357,7 @@ public:
             {"first_pass_paths", opt_.firstPass},
             {"target", opt_.relativeTarget ? "relative" : "absolute"},
             {"defensive", opt_.defensive},
-            {"estimate", opt_.estimate == GridEstimate::Pooled ? "pooled" : opt_.estimate == GridEstimate::Squares ? "squares" : "larger"},
+            {"estimate", estimateName(opt_.estimate)},
             {"split_gain", opt_.splitGain},
             {"prior_paths", opt_.priorPaths},
             {"learn_seconds", learnSeconds_},
