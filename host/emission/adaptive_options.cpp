@@ -72,6 +72,8 @@ public:
                           "With adaptive --adaptive-guide on: the diffuse vertices the guide draws at, first (default) or every");
         render.add_option("--adaptive-window", window_,
                           "With adaptive --adaptive-guide on: weight windows -- split or cull a path at its first diffuse vertex by the root of its second moment of contributions (moment, the default) or its expected contribution (mean), or off");
+        render.add_option("--adaptive-window-vertices", windowVertices_,
+                          "With adaptive --adaptive-window mean|moment: where a path not split yet may split, at every diffuse vertex (default) or its first only");
         render.add_option("--adaptive-window-split", windowSplit_,
                           "With adaptive --adaptive-window mean|moment: most branches a path splits into, 2..1024 (default 16)");
         render.add_option("--adaptive-window-survival", windowSurvival_,
@@ -97,7 +99,7 @@ public:
         const bool tuned = estimate_ || initialSkyDepth_ || maxSkyDepth_ || initialDepth_ || maxDepth_ ||
                            defensive_ || diskShare_ || split_ || firstPass_ || maxCells_ || prior_ || weights_ ||
                            target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_ ||
-                           guideVertices_ || window_ || windowSplit_ || windowSurvival_;
+                           guideVertices_ || window_ || windowSplit_ || windowSurvival_ || windowVertices_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
@@ -143,8 +145,11 @@ public:
         }
         a.guide.windowSplitMax = windowSplit_.value_or(a.guide.windowSplitMax);
         a.guide.windowMinSurvival = windowSurvival_.value_or(a.guide.windowMinSurvival);
-        if ((windowSplit_ || windowSurvival_) && !a.guide.window)
-            throw Error(cat(windowSplit_ ? "--adaptive-window-split" : "--adaptive-window-survival",
+        if (windowVertices_)
+            a.guide.windowEveryVertex = choice("--adaptive-window-vertices", *windowVertices_, "every", "first");
+        if ((windowSplit_ || windowSurvival_ || windowVertices_) && !a.guide.window)
+            throw Error(cat(windowSplit_ ? "--adaptive-window-split"
+                                         : (windowSurvival_ ? "--adaptive-window-survival" : "--adaptive-window-vertices"),
                             ": applies with weight windows, which ",
                             window_ ? "--adaptive-window off" : "--adaptive-guide off", " turns off"));
         if (a.guide.window && !a.guide.enabled)
@@ -153,7 +158,7 @@ public:
     }
 
 private:
-    std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_, window_;
+    std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_, window_, windowVertices_;
     std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_, windowSplit_;
     std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_,
         windowSurvival_;
@@ -239,7 +244,8 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
             {"window", a.guide.window},
             {"window_rule", static_cast<int>(a.guide.windowRule)},
             {"window_split_max", a.guide.windowSplitMax},
-            {"window_min_survival", a.guide.windowMinSurvival}};
+            {"window_min_survival", a.guide.windowMinSurvival},
+            {"window_every_vertex", a.guide.windowEveryVertex}};
 }
 
 }  // namespace fen

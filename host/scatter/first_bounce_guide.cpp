@@ -185,6 +185,7 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
         deviceParams_.window_split_max = static_cast<std::uint32_t>(opt_.windowSplitMax);
         deviceParams_.window_power = opt_.windowRule == GuideOptions::WindowRule::Moment ? 2u : 1u;
         deviceParams_.leaf_slots_at = static_cast<std::uint32_t>(deviceParams_.windows_at + slotCapacity_);
+        deviceParams_.window_every_vertex = opt_.windowEveryVertex ? 1u : 0u;
     }
     // with weight windows: a word per slot (its window) and per leaf (its slot)
     const std::size_t windowWords = deviceParams_.windows_at ? slotCapacity_ + leafCapacity_ : 0;
@@ -832,6 +833,7 @@ nlohmann::json FirstBounceGuide::report() const
             {"window_target", windowTarget_},
             {"window_split_max", opt_.windowSplitMax},
             {"window_min_survival", opt_.windowMinSurvival},
+            {"window_vertices", opt_.windowEveryVertex ? "every" : "first"},
             {"learn_seconds", learnSeconds_},
             {"learn_seconds_last_pass", lastLearnSeconds_},
             {"memory_bytes", deviceBytes_},

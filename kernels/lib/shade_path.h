@@ -18,6 +18,12 @@
  *    Unbiased for any k: the branches' mean estimates what one path would. Where it pays: paths of
  *    large weight, which adaptive emission draws from cells it keeps near the base density --
  *    light that must bounce outside before it can enter (docs/results/house.md);
+ *  - weight windows (guide->params->windows_at): at the first diffuse vertex the ratio of the path's
+ *    weight to its slot's window splits (>= 2) or culls (< 1/2) it, in place of the fixed rule;
+ *    with guide->params->window_every_vertex, a path not split yet splits at any later diffuse
+ *    vertex whose slot's window it passes twice over (splitting only), its branches scattering as
+ *    later vertices do. A path splits once at most (FEN_PATH_WAS_SPLIT), so one SplitState holds
+ *    its waiting branches;
  *  - the guide (guide->params->slots > 0; lib/guide.h): at its first diffuse vertex, and for
  *    every branch of a split there, a path scatters through a leaf drawn from its slot's learned
  *    quadtree, its weight divided by the leaf's density; its later camera connections carry the
@@ -146,6 +152,31 @@ static inline int scatter_later(global const RenderParams* params, const Guide* 
     return scatter_diffuse(params, p, albedo, n, u, next);
 }
 
+/* Splits path *p at vertex x (side n, primitive prim) into k >= 2 branches of weight beta / k: the
+   first goes on from here, the rest wait in *s for next_branch(). tag: the vertex's guide slot at a
+   first vertex, FEN_SPLIT_LATER at a later one. */
+static inline void split_path(PathState* p, SplitState* s, float3 x, float offset_m, float3 n, uint prim, uint k,
+                              uint tag, VertexTally* t)
+{
+    t->split += k;
+    p->beta.xyz /= (float)k;
+    s->pos = (float4)(x, offset_m);
+    s->normal = (float4)(n, as_float(prim));
+    s->beta = (float4)(p->beta.xyz, as_float(tag));
+    s->depth = p->depth;
+    s->next = 1u;
+    s->count = k;
+    s->path_hi = p->path_hi;
+    p->flags |= FEN_PATH_SPLIT | FEN_PATH_WAS_SPLIT;
+}
+
+/* With weight windows: the ratio of the path's weight to window w (> 0) of the slot it is at. */
+static inline float window_ratio(global const RenderParams* params, global const DevCamera* cam, const PathState* p,
+                                 float w)
+{
+    return rgb_luminance(p->beta.xyz) * window_units(params, cam) / w;
+}
+
 /* After the interaction at x: the depth count, the cap on it, and the next ray. Returns alive. */
 static inline int leave_vertex(global const RenderParams* params, PathState* p, float3 x, float offset_m,
                                float3 ng, float3 next, int alive, volatile global ulong* counters)
@@ -220,6 +251,15 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
             }
         }
         if (p->flags & FEN_PATH_BRANCHED) {
+            /* weight windows past the first vertex: the light that got in after bouncing outside
+               is heavy only once it is in (docs/DESIGN.md §3.4) */
+            if (guide->params->window_every_vertex && !(p->flags & FEN_PATH_WAS_SPLIT)) {
+                const float w = guide_window(guide, guide_slot(guide, x, n));
+                const float ratio = w > 0.0f ? window_ratio(params, cam, p, w) : 0.0f;
+                if (ratio >= 2.0f)
+                    split_path(p, s, x, offset_m, n, prim, (uint)fmin(ratio, (float)guide->params->window_split_max),
+                               FEN_SPLIT_LATER, t);
+            }
             alive = scatter_later(params, guide, p, albedo, x, n, u, &next, t);
         } else {
             /* the first diffuse vertex: where a path may split, and where the guide steers */
@@ -229,7 +269,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
             const float w = guide->params->slots ? guide_window(guide, slot) : 0.0f;
             uint k = 0u;
             if (w > 0.0f) {
-                const float ratio = rgb_luminance(p->beta.xyz) * window_units(params, cam) / w;
+                const float ratio = window_ratio(params, cam, p, w);
                 if (ratio >= 2.0f) {
                     k = (uint)fmin(ratio, (float)guide->params->window_split_max);
                 } else if (ratio < 0.5f) {
@@ -247,18 +287,8 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
                 const float y = rgb_luminance(p->beta.xyz);
                 k = (uint)fmin(y / params->split_weight, (float)params->split_max);
             }
-            if (k >= 2u) {
-                t->split += k;
-                p->beta.xyz /= (float)k;
-                s->pos = (float4)(x, offset_m);
-                s->normal = (float4)(n, as_float(prim));
-                s->beta = (float4)(p->beta.xyz, as_float(slot));
-                s->depth = p->depth;
-                s->next = 1u;
-                s->count = k;
-                s->path_hi = p->path_hi;
-                p->flags |= FEN_PATH_SPLIT;
-            }
+            if (k >= 2u)
+                split_path(p, s, x, offset_m, n, prim, k, slot, t);
             alive = scatter_first(params, guide, cam, p, albedo, n, u, slot, &next, t, counters);
         }
     }
@@ -266,8 +296,9 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
 }
 
 /* When a branch of a split path ends (a miss, roulette, the cap): starts the next branch waiting in
-   *s, if any -- the scatter at the split vertex with the branch's own random numbers. Returns 1
-   with its first ray in *p, 0 when no branch is left to go on. */
+   *s, if any -- the scatter at the split vertex with the branch's own random numbers, as a first
+   vertex scatters (guided, a new record) or, split later, as a later one (the record kept: nothing
+   since the split has changed it). Returns 1 with its first ray in *p, 0 when no branch is left. */
 static inline int next_branch(global const RenderParams* params, const Guide* guide, PathState* p,
                               SplitState* s, const SurfaceMaterials* sm, global const DevCamera* cam,
                               VertexTally* t, volatile global ulong* counters)
@@ -284,7 +315,10 @@ static inline int next_branch(global const RenderParams* params, const Guide* gu
         const float3 albedo = surface_albedo(sm, sm->materials + sm->prim_material[prim], prim, x);
         const float4 u = rng_path(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_SCATTER);
         float3 next = n;
-        const int alive = scatter_first(params, guide, cam, p, albedo, n, u, as_uint(s->beta.w), &next, t, counters);
+        const uint tag = as_uint(s->beta.w);
+        const int alive = tag == FEN_SPLIT_LATER
+                              ? scatter_later(params, guide, p, albedo, x, n, u, &next, t)
+                              : scatter_first(params, guide, cam, p, albedo, n, u, tag, &next, t, counters);
         if (leave_vertex(params, p, x, s->pos.w, n, next, alive, counters)) {
             p->flags |= FEN_PATH_ALIVE;
             return 1;

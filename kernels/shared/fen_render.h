@@ -22,8 +22,9 @@
 /* PathState.flags */
 #define FEN_PATH_ALIVE 1u
 #define FEN_PATH_SPLIT 2u     /* branches of a split wait in the path's SplitState (lib/shade_path.h) */
-#define FEN_PATH_BRANCHED 4u  /* past its first diffuse vertex: a path splits there or never */
+#define FEN_PATH_BRANCHED 4u  /* past its first diffuse vertex (where the guide's record is made) */
 #define FEN_PATH_REFLECTED 8u /* reflected by glass: no longer straight from the sky (lib/sensor.h's direct light) */
+#define FEN_PATH_WAS_SPLIT 16u /* split once (at its first diffuse vertex or, by a weight window, later): never again */
 /* Bits from FEN_PATH_PATCH_SHIFT up: the sky patch the path started from, in a daylight-coefficient
    run (lib/sky_patch.h; set at emission, kept by every later step, which only sets and clears the
    bits below) */
@@ -113,19 +114,23 @@ typedef struct {
 FEN_ASSERT_SIZE(PathState, 64);
 FEN_ASSERT_OFFSET(PathState, path_lo, 48);
 
-/* A path split at its first diffuse vertex (lib/shade_path.h): where the branches still to run
-   start from. Kept beside the path (a slot's own buffer in the wavefront, registers in the fused
-   kernel), read only when a branch ends. */
+/* A path split at a diffuse vertex (lib/shade_path.h; its first, or a later one by a weight window):
+   where the branches still to run start from. Kept beside the path (a slot's own buffer in the
+   wavefront, registers in the fused kernel), read only when a branch ends. */
 typedef struct {
     fen_float4 pos;     /* xyz: the vertex (m); w: how far a ray leaving it must start off the surface */
     fen_float4 normal;  /* xyz: unit normal on the side the light arrived at; w: as_uint primitive */
-    fen_float4 beta;    /* rgb: each branch's weight on arrival; w: as_uint the vertex's guide slot */
+    fen_float4 beta;    /* rgb: each branch's weight on arrival; w: as_uint the vertex's guide slot
+                           (first vertex), or FEN_SPLIT_LATER */
     fen_u32 depth;      /* interactions before the vertex */
     fen_u32 next;       /* the next branch to start */
     fen_u32 count;      /* branches in all */
     fen_u32 path_hi;    /* the path's own path_hi; branch b puts b in its top byte (its random numbers) */
 } SplitState;
 FEN_ASSERT_SIZE(SplitState, 64);
+/* SplitState.beta.w of a split at a later vertex: its branches scatter as later vertices do and keep
+   the path's first-vertex guide record (no slot is a valid index this large) */
+#define FEN_SPLIT_LATER 0xffffffffu
 FEN_ASSERT_OFFSET(SplitState, depth, 48);
 
 typedef struct {

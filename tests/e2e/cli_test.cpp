@@ -528,6 +528,10 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
                 "--adaptive-window-survival: applies with weight windows, which --adaptive-guide off turns off");
     expectError(run("render " + good + out + " --adaptive-window mean --adaptive-guide off"), 1,
                 "--adaptive-window: needs");
+    expectError(run("render " + good + out + " --adaptive-window-vertices all"), 1,
+                "--adaptive-window-vertices 'all': expected every or first");
+    expectError(run("render " + good + out + " --adaptive-window off --adaptive-window-vertices first"), 1,
+                "--adaptive-window-vertices: applies with weight windows, which --adaptive-window off turns off");
     // splitting: a count of branches, a positive weight unit -- never silently the default
     expectError(run("render " + good + out + " --split 0"), 1, "--split 0");
     expectError(run("render " + good + out + " --split -1"), 1, "--split -1");

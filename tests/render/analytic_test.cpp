@@ -342,6 +342,31 @@ TEST(Analytic, WeightWindowsConserveEnergy)
     }
 }
 
+TEST(Analytic, WeightWindowsPastTheFirstVertexConserveEnergy)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    // Windows that only split (as by default), at a path's first diffuse vertex alone and then also
+    // at its later ones: a path not split at its first vertex splits at the first later one whose
+    // slot's window its weight passes twice over, its branches scattering as later vertices do.
+    // Both means must hold, and the later vertices must have split paths of their own: more
+    // branches than with the first vertex alone, from the same seed.
+    std::uint64_t branches[2] = {0, 0};
+    for (const bool every : {false, true}) {
+        const auto r = integratingSphere(*ctx, 4u << 20, [every](RenderSettings& s) {
+            guided(false)(s);
+            s.emission.adaptive.guide.window = true;
+            s.emission.adaptive.guide.windowMinVisits = 16.0;
+            s.emission.adaptive.guide.windowEveryVertex = every;
+        }, every ? "integrating sphere, windows at every vertex" : "integrating sphere, windows at the first vertex");
+        EXPECT_EQ(r.counts.windowCulls, 0u) << every;
+        EXPECT_EQ(r.emission["guide"].value("window_vertices", ""), every ? "every" : "first");
+        branches[every] = r.counts.splitBranches;
+    }
+    std::printf("[ windows ] split branches: first vertex %llu, every vertex %llu\n",
+                static_cast<unsigned long long>(branches[0]), static_cast<unsigned long long>(branches[1]));
+    EXPECT_GT(branches[1], branches[0] + branches[0] / 10) << "no path split past its first vertex";
+}
+
 TEST(Analytic, SkySeenDirectlyAndThroughGlass)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
