@@ -2,10 +2,11 @@
 // bit-identical renders for the same seed: image, per-batch statistics, counters and, for the
 // adaptive strategy, the learned grid -- for every strategy, with glass in the scene, with
 // Russian roulette from the first interaction or later, with paths split at their first hit, with
-// the first bounce guided, with weight windows. So the faster of the two can never be
-// the wrong one.
+// the first bounce guided, with weight windows (at first vertices, and splitting at later ones). So
+// the faster of the two can never be the wrong one.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 
 #include "render/renderer.h"
@@ -27,6 +28,7 @@ struct Case {
     bool guide = false;
     bool guideEveryVertex = false;
     bool window = false;
+    bool windowEveryVertex = true;  // with windows: later vertices split too (the default)
 };
 
 RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
@@ -46,6 +48,7 @@ RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
     s.emission.adaptive.guide.enabled = c.guide;
     s.emission.adaptive.guide.everyVertex = c.guideEveryVertex;
     s.emission.adaptive.guide.window = c.window;
+    s.emission.adaptive.guide.windowEveryVertex = c.windowEveryVertex;
     s.emission.adaptive.guide.windowRule = GuideOptions::WindowRule::Moment;
     s.emission.adaptive.guide.windowMinVisits = 16.0;
     s.emission.adaptive.guide.windowMinSurvival = 0.25;  // some culled, some split
@@ -80,6 +83,16 @@ TEST_P(FusedKernel, BitIdenticalToTheWavefront)
     if (c.window) {
         EXPECT_GT(f.counts.splitBranches, 0u) << "the windows split nothing";
         EXPECT_GT(f.counts.windowCulls, 0u) << "the windows culled nothing";
+    }
+    if (c.window && c.windowEveryVertex) {
+        // the later vertices' splits are among the branches compared: more than the first alone make
+        Case first = c;
+        first.windowEveryVertex = false;
+        const RenderResult f1 = renderWith(*ctx, first, KernelMode::Fused);
+        std::printf("[ fused ] %s: %llu branches, %llu with the first vertex alone\n", c.name,
+                    static_cast<unsigned long long>(f.counts.splitBranches),
+                    static_cast<unsigned long long>(f1.counts.splitBranches));
+        EXPECT_GT(f.counts.splitBranches, f1.counts.splitBranches) << "no path split past its first vertex";
     }
     EXPECT_EQ(w.counts.badContributions, 0u);
     EXPECT_EQ(f.counts.badContributions, 0u);
@@ -120,9 +133,12 @@ INSTANTIATE_TEST_SUITE_P(
                       // ... and at every diffuse vertex
                       Case{"adaptive_guide_every_vertex", "room.gltf", EmissionMethod::Adaptive,
                            EmissionMethod::Uniform, 3, 1, 1.0, true, true},
-                      // ... and with weight windows splitting and culling at first vertices
+                      // ... and with weight windows splitting and culling at first vertices, splitting at
+                      // later ones (the default) or not
                       Case{"adaptive_guide_window", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, 3,
-                           1, 1.0, true, false, true}),
+                           1, 1.0, true, false, true},
+                      Case{"adaptive_guide_window_first", "room.gltf", EmissionMethod::Adaptive,
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true, false}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
