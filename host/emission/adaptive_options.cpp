@@ -75,7 +75,7 @@ public:
         render.add_option("--adaptive-window-vertices", windowVertices_,
                           "With adaptive --adaptive-window mean|moment: where a path not split yet may split, at every diffuse vertex (default) or its first only");
         render.add_option("--adaptive-window-split", windowSplit_,
-                          "With adaptive --adaptive-window mean|moment: most branches a path splits into, 2..1024 (default 16)");
+                          "With adaptive --adaptive-window mean|moment: most branches a path splits into, 2..255 (default 16)");
         render.add_option("--adaptive-window-survival", windowSurvival_,
                           "With adaptive --adaptive-window mean|moment: least probability a path below its window survives with, (0, 1]; 1 (default): never culled");
         render.add_option("--adaptive-guide-memory", guideMemory_,

@@ -79,8 +79,10 @@ void validateGuideOptions(const GuideOptions& o)
         throw Error(cat("--adaptive-guide-split ", o.splitShare, ": must be in (0, 1]"));
     if (!(o.minLeafConnections >= 1.0))
         throw Error(cat("guide minimum contributions per leaf ", o.minLeafConnections, " must be at least 1"));
-    if (o.windowSplitMax < 2 || o.windowSplitMax > 1024)
-        throw Error(cat("--adaptive-window-split ", o.windowSplitMax, ": must be in 2..1024"));
+    // a branch's random numbers carry its number in the top byte of path_hi (lib/shade_path.h):
+    // branch 256 would draw branch 0's, as --split's cap says too
+    if (o.windowSplitMax < 2 || o.windowSplitMax > 255)
+        throw Error(cat("--adaptive-window-split ", o.windowSplitMax, ": must be in 2..255"));
     if (!(o.windowMinSurvival > 0.0 && o.windowMinSurvival <= 1.0))
         throw Error(cat("--adaptive-window-survival ", o.windowMinSurvival, ": must be in (0, 1] (with 0 a path "
                         "the windows cull could never survive: bias)"));

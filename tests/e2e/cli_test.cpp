@@ -520,6 +520,9 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     expectError(run("render " + good + out + " --adaptive-window on"), 1, "--adaptive-window 'on'");
     expectError(run("render " + good + out + " --adaptive-window mean --adaptive-window-split 1"), 1,
                 "--adaptive-window-split 1");
+    // a branch's number is a byte of its random numbers' key: 256 branches would repeat branch 0
+    expectError(run("render " + good + out + " --adaptive-window-split 256"), 1,
+                "--adaptive-window-split 256: must be in 2..255");
     expectError(run("render " + good + out + " --adaptive-window moment --adaptive-window-survival 0"), 1,
                 "--adaptive-window-survival 0");
     expectError(run("render " + good + out + " --adaptive-window off --adaptive-window-split 8"), 1,
