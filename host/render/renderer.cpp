@@ -819,8 +819,8 @@ Renderer::Renderer(ocl::Context& ctx, const Scene& scene, const std::optional<Go
         throw Error(cat("--max-bounces ", settings.maxBounces, " must be at least 1"));
     if (settings.rouletteDepth && (*settings.rouletteDepth < 0 || *settings.rouletteDepth > 64))
         throw Error(cat("--roulette-depth ", *settings.rouletteDepth, ": must be in 0..64"));
-    if (settings.splitMax < 1 || settings.splitMax > 255)
-        throw Error(cat("--split ", settings.splitMax, " must be in 1..255 branches (1: never split)"));
+    if (settings.splitMax < 1 || settings.splitMax > FEN_MAX_BRANCHES)
+        throw Error(cat("--split ", settings.splitMax, " must be in 1..", FEN_MAX_BRANCHES, " branches (1: never split)"));
     if (!(settings.splitWeight > 0.0 && settings.splitWeight <= 1e6))
         throw Error(cat("--split-weight ", settings.splitWeight, " must be in (0, 10^6]"));
     if (settings.batches > 1024)

@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "io/state_io.h"
+#include "shared/fen_render.h"
 #include "util/error.h"
 #include "util/integer_cdf.h"
 #include "util/fixed_point.h"
@@ -79,10 +80,8 @@ void validateGuideOptions(const GuideOptions& o)
         throw Error(cat("--adaptive-guide-split ", o.splitShare, ": must be in (0, 1]"));
     if (!(o.minLeafConnections >= 1.0))
         throw Error(cat("guide minimum contributions per leaf ", o.minLeafConnections, " must be at least 1"));
-    // a branch's random numbers carry its number in the top byte of path_hi (lib/shade_path.h):
-    // branch 256 would draw branch 0's, as --split's cap says too
-    if (o.windowSplitMax < 2 || o.windowSplitMax > 255)
-        throw Error(cat("--adaptive-window-split ", o.windowSplitMax, ": must be in 2..255"));
+    if (o.windowSplitMax < 2 || o.windowSplitMax > FEN_MAX_BRANCHES)
+        throw Error(cat("--adaptive-window-split ", o.windowSplitMax, ": must be in 2..", FEN_MAX_BRANCHES));
     if (!(o.windowMinSurvival > 0.0 && o.windowMinSurvival <= 1.0))
         throw Error(cat("--adaptive-window-survival ", o.windowMinSurvival, ": must be in (0, 1] (with 0 a path "
                         "the windows cull could never survive: bias)"));

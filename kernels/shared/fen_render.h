@@ -131,6 +131,9 @@ FEN_ASSERT_SIZE(SplitState, 64);
 /* SplitState.beta.w of a split at a later vertex: its branches scatter as later vertices do and keep
    the path's first-vertex guide record (no slot is a valid index this large) */
 #define FEN_SPLIT_LATER 0xffffffffu
+/* The most branches one split makes (--split, --adaptive-window-split): a branch's number is the top
+   byte of its path_hi, so branch 256 would draw branch 0's random numbers */
+#define FEN_MAX_BRANCHES 255
 FEN_ASSERT_OFFSET(SplitState, depth, 48);
 
 typedef struct {
