@@ -71,7 +71,8 @@ kernel void shade_paths(global const RenderParams* params, global PathState* pat
 {
     local uint alive_in_group;
     VertexTally tally = {0, 0, 0, 0};
-    const Guide guide = {guide_params, guide_tables, guide_window_stats};
+    /* one path a work-item: nothing to hold (lib/guide.h HeldArrivals) */
+    const Guide guide = {guide_params, guide_tables, guide_window_stats, 0};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
     const Sensors sensors = {sensor_info, sensor_planes, sensor_cells, sensor_bucket_start, sensor_bucket_cells,
                              sensor_accum, sensor_cell_stats, sensor_steer, params->fixed_scale, params->stats_scale};

@@ -10,7 +10,7 @@ kernel void guide_sample_probe(global const GuideParams* guide_params, global co
     const uint i = get_global_id(0);
     if (i >= n)
         return;
-    const Guide g = {guide_params, guide_tables, 0};
+    const Guide g = {guide_params, guide_tables, 0, 0};
     if (!(guide_record_of(&g, slot).w & FEN_GUIDE_LEARNED)) { /* only a learned slot has columns */
         out[i] = (float4)(0.0f);
         return;
@@ -27,7 +27,7 @@ kernel void guide_slot_probe(global const GuideParams* guide_params, global cons
                              global const float4* x, global const float4* n, uint count, global uint* slot)
 {
     const uint i = get_global_id(0);
-    const Guide g = {guide_params, guide_tables, 0};
+    const Guide g = {guide_params, guide_tables, 0, 0};
     if (i < count)
         slot[i] = guide_slot(&g, x[i].xyz, n[i].xyz);
 }
@@ -39,6 +39,24 @@ kernel void guide_leaf_probe(global const GuideParams* guide_params, global cons
     const uint i = get_global_id(0);
     if (i >= count)
         return;
-    const Guide g = {guide_params, guide_tables, 0};
+    const Guide g = {guide_params, guide_tables, 0, 0};
     leaf[i] = guide_leaf(&g, guide_record_of(&g, slot), sq[i]);
+}
+
+/* Weight-window arrivals (lib/guide.h guide_arrive): work-item i adds a[i per + k] to the sums of
+   slot slot[i per + k], k = 0 .. per - 1 in order, held in registers and flushed at its end
+   (hold = 1, as the fused kernel does) or each added at once (hold = 0, as shade.cl does). */
+kernel void guide_arrive_probe(global const GuideParams* guide_params, volatile global ulong* window_stats,
+                               global const uint* slot, global const float* a, uint per, uint count, uint hold,
+                               volatile global ulong* counters)
+{
+    const uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    HeldArrivals held;
+    held_arrivals_init(&held);
+    const Guide g = {guide_params, 0, window_stats, hold ? &held : 0};
+    for (uint k = 0; k < per; ++k)
+        guide_arrive(&g, slot[i * per + k], a[i * per + k], counters);
+    guide_arrivals_flush(&g);
 }

@@ -798,7 +798,8 @@ nlohmann::json FirstBounceGuide::report() const
             checksum.value(l.depth);
         }
         if (opt_.window)
-            checksum.value(t.window.visits);
+            for (double v : t.window.totals())  // the fused kernel holds arrivals a while: the sums must agree too
+                checksum.value(v);
         checksum.value(t.learned);
     }
     const double used = trees_.size() * 16.0 + leafCount_ * kBytesPerLeaf + 4.0 * voxelWord_.size() +

@@ -25,19 +25,54 @@ static inline void counter_add(volatile global ulong* counters, int which, ulong
     atom_add(counters + which, v);
 }
 
+/* Splits x (fixed-point units, >= 0) into its high and low 64 bits; returns 0 when x is not below
+   2^127 (or NaN). x = hi 2^64 + lo exactly: x has 24 significant bits, so x - hi 2^64 is a float too. */
+static inline int fixed_parts(float x, ulong* hi, ulong* lo)
+{
+    if (!(x < 0x1p127f))
+        return 0;
+    *hi = convert_ulong_rtz(x * 0x1p-64f);
+    *lo = convert_ulong_rte(x - (float)*hi * 0x1p64f);
+    return 1;
+}
+
+/* Adds the 128-bit value hi 2^64 + lo to the accumulator (word[0] low, word[1] high). */
+static inline void fixed_add_parts(volatile global ulong* word, ulong hi, ulong lo)
+{
+    ulong carry = 0ul;
+    if (lo != 0ul) {
+        const ulong old = atom_add(word, lo);
+        carry = (old + lo < old) ? 1ul : 0ul;
+    }
+    if (hi + carry != 0ul)
+        atom_add(word + 1, hi + carry);
+}
+
 /* Adds x (fixed-point units, >= 0) to the 128-bit accumulator (word[0] low, word[1] high);
    returns 0, adding nothing, when x is not below 2^127 (or NaN). */
 static inline int fixed_add128(volatile global ulong* word, float x)
 {
-    if (!(x < 0x1p127f))
+    ulong hi, lo;
+    if (!fixed_parts(x, &hi, &lo))
         return 0;
-    /* x = hi 2^64 + lo exactly: x has 24 significant bits, so x - hi 2^64 is a float too */
-    const ulong hi = convert_ulong_rtz(x * 0x1p-64f);
-    const ulong lo = convert_ulong_rte(x - (float)hi * 0x1p64f);
-    const ulong old = atom_add(word, lo);
-    const ulong carry = (old + lo < old) ? 1ul : 0ul;
-    if (hi + carry != 0ul)
-        atom_add(word + 1, hi + carry);
+    fixed_add_parts(word, hi, lo);
+    return 1;
+}
+
+/* A 128-bit fixed-point sum a work-item holds in registers and adds to memory once
+   (fixed_add_parts): the same integers summed in another order, so memory ends with the same
+   bytes as if each value had been added there, with one atomic where there were many. */
+typedef struct {
+    ulong lo, hi;
+} Fixed128;
+
+static inline int fixed_add_held(Fixed128* s, float x)
+{
+    ulong hi, lo;
+    if (!fixed_parts(x, &hi, &lo))
+        return 0;
+    s->lo += lo;
+    s->hi += hi + (s->lo < lo ? 1ul : 0ul);
     return 1;
 }
 

@@ -14,7 +14,9 @@
  * Built with -DFEN_HAS_SENSORS, every segment adds its flux to the sensor cells it crosses
  * (lib/sensor.h), as shade.cl does in the wavefront.
  * Counters: emitted paths, extension and shadow rays, diffuse and guided vertices, added once per
- * work-item at its end.
+ * work-item at its end. The weight windows' arrivals are held in registers (lib/guide.h
+ * HeldArrivals) and added when their entry is needed and at the end: integer sums, the same bytes
+ * as the wavefront's adding each at once.
  */
 #ifndef FEN_FUSED_KERNEL_H
 #define FEN_FUSED_KERNEL_H
@@ -43,7 +45,9 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
     const Sensors sensors = {sensor_info, sensor_planes, sensor_cells, sensor_bucket_start, sensor_bucket_cells,
                              sensor_accum, cell_stats, sensor_steer, params->fixed_scale, params->stats_scale};
     const FEN_EMITTER_TYPE emitter = FEN_EMITTER_MAKE;
-    const Guide guide = {guide_params, guide_tables, guide_window_stats};
+    HeldArrivals held;
+    held_arrivals_init(&held);
+    const Guide guide = {guide_params, guide_tables, guide_window_stats, &held};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
     ulong emitted = 0, extension = 0, shadow = 0;
     VertexTally tally = {0, 0, 0, 0};
@@ -88,6 +92,7 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
             }
         }
     }
+    guide_arrivals_flush(&guide);
     if (emitted)
         atom_add(counters + FEN_CTR_EMITTED, emitted);
     if (extension)

@@ -22,10 +22,34 @@
 #include "lib/rng.h"
 #include "lib/sampling.h"
 
+/* The weight windows' arrivals a work-item holds before adding them to window_stats (guide_arrive):
+   every path's first diffuse vertex adds one, and where most paths land on a few slots (the ground
+   around a house) two cores adding to the same words take turns on their cache lines (the house:
+   8 % of a profile's samples waited on those atomics; held, 3 % more paths a second,
+   docs/performance.md). Direct-mapped by slot; an entry is added to memory when
+   another slot takes its place and when the work-item ends (guide_arrivals_flush): the same
+   integer sums, so the same bytes. */
+#define FEN_GUIDE_HELD_SLOTS 8
+typedef struct {
+    uint slot[FEN_GUIDE_HELD_SLOTS]; /* FEN_INVALID_ID: empty */
+    ulong visits[FEN_GUIDE_HELD_SLOTS];
+    Fixed128 arrived[FEN_GUIDE_HELD_SLOTS];
+} HeldArrivals;
+
+static inline void held_arrivals_init(HeldArrivals* h)
+{
+    for (int i = 0; i < FEN_GUIDE_HELD_SLOTS; ++i) {
+        h->slot[i] = FEN_INVALID_ID;
+        h->visits[i] = 0ul;
+        h->arrived[i].lo = h->arrived[i].hi = 0ul;
+    }
+}
+
 typedef struct {
     global const GuideParams* params;
     global const uint* tables;  /* slot records, nodes, leaves, alias columns (fen_guide.h) */
     volatile global ulong* window_stats; /* per slot (fen_guide.h): the weight windows' sums */
+    HeldArrivals* held;                  /* the work-item's own, or 0: arrivals go to memory at once */
 } Guide;
 
 /* The slot of a vertex at x whose light arrived on side n (unit): the spatial leaf x lies in and
@@ -147,18 +171,57 @@ static inline uint guide_window_word(const Guide* g, uint key)
     return g->tables[g->params->leaf_slots_at + key] | (g->params->window_power == 2u ? FEN_GUIDE_WINDOW_SQUARED : 0u);
 }
 
+/* Adds held entry i to window_stats and empties it. */
+static inline void guide_arrival_flush(const Guide* g, int i)
+{
+    HeldArrivals* h = g->held;
+    if (h->slot[i] == FEN_INVALID_ID)
+        return;
+    volatile global ulong* s = g->window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)h->slot[i];
+    fixed_add_parts(s + FEN_GUIDE_ARRIVED_LO, h->arrived[i].hi, h->arrived[i].lo);
+    if (h->visits[i] != 0ul)
+        atom_add(s + FEN_GUIDE_VISITS, h->visits[i]);
+    h->slot[i] = FEN_INVALID_ID;
+    h->visits[i] = 0ul;
+    h->arrived[i].lo = h->arrived[i].hi = 0ul;
+}
+
+/* Adds what the work-item holds to window_stats: before it ends, and before anything reads them. */
+static inline void guide_arrivals_flush(const Guide* g)
+{
+    if (!g->held)
+        return;
+    for (int i = 0; i < FEN_GUIDE_HELD_SLOTS; ++i)
+        guide_arrival_flush(g, i);
+}
+
 /* With weight windows: a path (or branch) whose weight arrived with luminance over A_pix a (at the
    window statistics' scale) leaves its first diffuse vertex in slot `slot` -- the denominators of
    the adjoint (delivered / arrived, or its second moment, delivered^2 / arrived^2: a to the power
    the rule sums) and of the target (per visit). */
 static inline void guide_arrive(const Guide* g, uint slot, float a, volatile global ulong* counters)
 {
-    volatile global ulong* s = g->window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)slot;
-    if (!fixed_add128(s + FEN_GUIDE_ARRIVED_LO, g->params->window_power == 2u ? a * a : a)) {
+    const float v = g->params->window_power == 2u ? a * a : a;
+    HeldArrivals* h = g->held;
+    if (!h) {
+        volatile global ulong* s = g->window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)slot;
+        if (!fixed_add128(s + FEN_GUIDE_ARRIVED_LO, v)) {
+            counter_add(counters, FEN_CTR_STATS_OVERFLOWS, 1);
+            return;
+        }
+        atom_inc(s + FEN_GUIDE_VISITS);
+        return;
+    }
+    const int i = (int)(slot % FEN_GUIDE_HELD_SLOTS);
+    if (h->slot[i] != slot) {
+        guide_arrival_flush(g, i);
+        h->slot[i] = slot;
+    }
+    if (!fixed_add_held(&h->arrived[i], v)) {
         counter_add(counters, FEN_CTR_STATS_OVERFLOWS, 1);
         return;
     }
-    atom_inc(s + FEN_GUIDE_VISITS);
+    ++h->visits[i];
 }
 
 #endif /* FEN_GUIDE_LIB_H */

@@ -15,11 +15,13 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <random>
 
 #include "cl/launch.h"
 #include "io/state_io.h"
 #include "util/error.h"
 #include "scatter/first_bounce_guide.h"
+#include "shared/fen_render.h"
 #include "support/cl_fixture.h"
 #include "support/statistics.h"
 
@@ -266,6 +268,68 @@ TEST(GuideSampling, WindowsAreTheTargetOverTheAdjoint)
     EXPECT_FLOAT_EQ(m[2], static_cast<float>(std::sqrt(tau2) * 4.0 * unit));
     EXPECT_EQ(m[3], 0.0f);
     EXPECT_EQ(m[4], std::numeric_limits<float>::max());
+}
+
+// The fused kernel holds each work-item's window arrivals in registers (lib/guide.h HeldArrivals)
+// and adds them to memory when another slot takes their entry or the work-item ends; the wavefront
+// adds each at once. Both must leave exactly the sums of the values (to the rule's power, carries
+// into the high word included, modulo nothing: none reaches 2^128), the visits, and the same count
+// of values dropped as beyond 2^127.
+TEST(GuideSampling, HeldArrivalsLeaveTheSumsOfAddingEachAtOnce)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    GuideOptions o = options();
+    o.window = true;
+    o.windowRule = GuideOptions::WindowRule::Moment;
+    FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
+    dev::GuideParams p;
+    ctx->queue().enqueueReadBuffer(g.params(), CL_TRUE, 0, sizeof p, &p);
+    ASSERT_EQ(p.window_power, 2u) << "the moment rule sums squares";
+    constexpr std::uint32_t items = 256, per = 64, slots = 24;
+    std::mt19937 rng(7);
+    std::vector<std::uint32_t> slot(items * per);
+    std::vector<float> a(items * per);
+    std::vector<unsigned __int128> sum(slots, 0);
+    std::vector<std::uint64_t> visits(slots, 0);
+    std::uint64_t overflows = 0;
+    for (std::size_t i = 0; i < slot.size(); ++i) {
+        // half in one slot (runs), the rest over 24 (evictions: 8 entries, slots 3, 11, 19 share one)
+        slot[i] = rng() % 2 ? 3u : static_cast<std::uint32_t>(rng() % slots);
+        // a = k 2^e: its square k^2 2^2e is exact in float (k^2 < 2^24); 2^60 and more need the
+        // high word, and most of e = 62 (and some of 57) reach 2^127 and are dropped
+        const std::uint32_t k = 1 + static_cast<std::uint32_t>(rng() % 4095);
+        const int e = std::array<int, 6>{0, 10, 30, 50, 57, 62}[rng() % 6];
+        a[i] = std::ldexp(static_cast<float>(k), e);
+        if (std::ldexp(static_cast<double>(k) * k, 2 * e) >= std::ldexp(1.0, 127)) {
+            ++overflows;
+            continue;
+        }
+        sum[slot[i]] += static_cast<unsigned __int128>(std::uint64_t{k} * k) << (2 * e);
+        ++visits[slot[i]];
+    }
+    ASSERT_GT(overflows, 0u);
+    ASSERT_GT(static_cast<std::uint64_t>(sum[3] >> 64), 0u) << "no carry into the high word";
+    cl::Buffer sb = ctx->buffer(CL_MEM_READ_ONLY, slot.size() * 4, "slots", slot.data());
+    cl::Buffer ab = ctx->buffer(CL_MEM_READ_ONLY, a.size() * 4, "values", a.data());
+    for (std::uint32_t hold : {0u, 1u}) {
+        std::vector<std::uint64_t> words(std::size_t{slots} * FEN_GUIDE_WINDOW_WORDS, 0), counters(FEN_CTR_COUNT, 0);
+        cl::Buffer wb = ctx->buffer(CL_MEM_READ_WRITE, words.size() * 8, "window sums", words.data());
+        cl::Buffer cb = ctx->buffer(CL_MEM_READ_WRITE, counters.size() * 8, "counters", counters.data());
+        cl::Kernel k(ctx->program("test_guide_probes.cl"), "guide_arrive_probe");
+        ocl::setKernelArgs(k, g.params(), wb, sb, ab, per, items, hold, cb);
+        ocl::launch(*ctx, k, "guide_arrive_probe", items);
+        ctx->queue().enqueueReadBuffer(wb, CL_TRUE, 0, words.size() * 8, words.data());
+        ctx->queue().enqueueReadBuffer(cb, CL_TRUE, 0, counters.size() * 8, counters.data());
+        for (std::uint32_t s = 0; s < slots; ++s) {
+            const std::uint64_t* w = words.data() + std::size_t{s} * FEN_GUIDE_WINDOW_WORDS;
+            EXPECT_EQ(w[FEN_GUIDE_ARRIVED_LO], static_cast<std::uint64_t>(sum[s])) << "hold " << hold << ", slot " << s;
+            EXPECT_EQ(w[FEN_GUIDE_ARRIVED_HI], static_cast<std::uint64_t>(sum[s] >> 64))
+                << "hold " << hold << ", slot " << s;
+            EXPECT_EQ(w[FEN_GUIDE_VISITS], visits[s]) << "hold " << hold << ", slot " << s;
+            EXPECT_EQ(w[FEN_GUIDE_DELIVERED_LO], 0u);
+        }
+        EXPECT_EQ(counters[FEN_CTR_STATS_OVERFLOWS], overflows) << "hold " << hold;
+    }
 }
 
 TEST(GuideSampling, TreesRefineWhereTheDensityConcentratesAndTheDeviceFollows)

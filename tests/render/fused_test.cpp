@@ -3,7 +3,8 @@
 // adaptive strategy, the learned grid -- for every strategy, with glass in the scene, with
 // Russian roulette from the first interaction or later, with paths split at their first hit, with
 // the first bounce guided, with weight windows (at first vertices, and splitting at later ones). So
-// the faster of the two can never be the wrong one.
+// the faster of the two can never be the wrong one. The fused kernel holds the windows' arrivals
+// in registers a while, the wavefront adds each at once: the guide's checksum covers those sums.
 #include <gtest/gtest.h>
 
 #include <cstdio>
