@@ -426,6 +426,7 @@ void FirstBounceGuide::rebuildWindows()
     windowWords_.clear();
     windowSlots_ = 0;
     windowTarget_ = 0.0;
+    deviceParams_.window_min = 0.0f;
     if (!deviceParams_.windows_at)
         return;
     const bool moment = opt_.windowRule == GuideOptions::WindowRule::Moment;
@@ -444,7 +445,10 @@ void FirstBounceGuide::rebuildWindows()
             continue;
         const double ratio = t.window.delivered > 0.0 ? windowTarget_ * t.window.arrived / t.window.delivered : 0.0;
         const double w = moment ? std::sqrt(ratio) : ratio;
-        windowWords_[s] = floatBits(w > 0.0 && w < 3e38 ? static_cast<float>(w) : std::numeric_limits<float>::max());
+        const float word = w > 0.0 && w < 3e38 ? static_cast<float>(w) : std::numeric_limits<float>::max();
+        windowWords_[s] = floatBits(word);
+        // the device's shortcut past the first vertex (fen_guide.h window_min): the exact float it compares
+        deviceParams_.window_min = windowSlots_ == 0 ? word : std::min(deviceParams_.window_min, word);
         ++windowSlots_;
     }
 }

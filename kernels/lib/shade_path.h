@@ -253,7 +253,9 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
         if (p->flags & FEN_PATH_BRANCHED) {
             /* weight windows past the first vertex: the light that got in after bouncing outside
                is heavy only once it is in (docs/DESIGN.md §3.4) */
-            if (guide->params->window_every_vertex && !(p->flags & FEN_PATH_WAS_SPLIT)) {
+            /* a/w <= a/window_min for every window w: under 2 there, the path splits at no slot */
+            if (guide->params->window_every_vertex && !(p->flags & FEN_PATH_WAS_SPLIT) &&
+                window_ratio(params, cam, p, guide->params->window_min) >= 2.0f) {
                 const float w = guide_window(guide, guide_slot(guide, x, n));
                 const float ratio = w > 0.0f ? window_ratio(params, cam, p, w) : 0.0f;
                 if (ratio >= 2.0f)

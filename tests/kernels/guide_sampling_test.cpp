@@ -219,6 +219,10 @@ std::vector<float> windowsOf(ocl::Context& ctx, GuideOptions::WindowRule rule, n
     }
     std::vector<float> w(6);
     ctx.queue().enqueueReadBuffer(g.tables(), CL_TRUE, std::size_t{p.windows_at} * 4, w.size() * 4, w.data());
+    // The smallest window, the device's bound past the first vertex (a path under twice it splits
+    // nowhere): slots 1 and 2 have windows, slot 4 the largest float, slot 3 and the rest none.
+    EXPECT_EQ(p.window_min, std::min(w[1], w[2]));
+    EXPECT_GT(p.window_min, 0.0f);
     // The totals survive a checkpoint: the reloaded guide makes the same windows.
     StateWriter out;
     g.save(out);
