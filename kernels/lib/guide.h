@@ -36,13 +36,18 @@ typedef struct {
     Fixed128 arrived[FEN_GUIDE_HELD_SLOTS];
 } HeldArrivals;
 
+/* Empties entry i. */
+static inline void held_arrival_clear(HeldArrivals* h, int i)
+{
+    h->slot[i] = FEN_INVALID_ID;
+    h->visits[i] = 0ul;
+    h->arrived[i].lo = h->arrived[i].hi = 0ul;
+}
+
 static inline void held_arrivals_init(HeldArrivals* h)
 {
-    for (int i = 0; i < FEN_GUIDE_HELD_SLOTS; ++i) {
-        h->slot[i] = FEN_INVALID_ID;
-        h->visits[i] = 0ul;
-        h->arrived[i].lo = h->arrived[i].hi = 0ul;
-    }
+    for (int i = 0; i < FEN_GUIDE_HELD_SLOTS; ++i)
+        held_arrival_clear(h, i);
 }
 
 typedef struct {
@@ -181,9 +186,7 @@ static inline void guide_arrival_flush(const Guide* g, int i)
     fixed_add_parts(s + FEN_GUIDE_ARRIVED_LO, h->arrived[i].hi, h->arrived[i].lo);
     if (h->visits[i] != 0ul)
         atom_add(s + FEN_GUIDE_VISITS, h->visits[i]);
-    h->slot[i] = FEN_INVALID_ID;
-    h->visits[i] = 0ul;
-    h->arrived[i].lo = h->arrived[i].hi = 0ul;
+    held_arrival_clear(h, i);
 }
 
 /* Adds what the work-item holds to window_stats: before it ends, and before anything reads them. */
