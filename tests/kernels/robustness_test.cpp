@@ -329,6 +329,30 @@ std::vector<dev::SurfaceHit> closestSurfaces(ocl::Context& ctx, TracedScene& s, 
     return hits;
 }
 
+// A direction to the right (+x) and down (-y), from near the horizontal to near the vertical, a
+// little along z.
+glm::vec3 rightAndDown(std::mt19937_64& rng)
+{
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const float angle = 0.05f + 1.47f * u(rng);  // from the horizontal, in (0, pi/2)
+    return {std::cos(angle), -std::sin(angle), 0.3f * (u(rng) - 0.5f)};
+}
+
+// A live path from 10 m away along d (normalised here), aimed within 2 micrometres of the line
+// x = y = 0 at |z| < 1.
+dev::PathState towardsTheEdge(std::mt19937_64& rng, glm::vec3 d)
+{
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    d = glm::normalize(d);
+    const glm::vec3 target(2e-6f * (2.0f * u(rng) - 1.0f), 2e-6f * (2.0f * u(rng) - 1.0f), 2.0f * u(rng) - 1.0f);
+    const glm::vec3 org = target - 10.0f * d;
+    dev::PathState p{};
+    p.org = {org.x, org.y, org.z, 0.0f};
+    p.dir = {d.x, d.y, d.z, 0.0f};
+    p.flags = FEN_PATH_ALIVE;
+    return p;
+}
+
 // A wall (x = 0, up to y = 3) standing on a floor (y = 0, out to x = 6), two meshes sharing the
 // corner's edge. Rays from 10 m away aimed within 2 micrometres of the edge, from outside: from
 // the wall's outer side (x < 0, y > 0) a ray can reach the floor only through the wall, and from
@@ -345,27 +369,18 @@ TEST_P(Robust, NoLightThroughTheEdgeWhereTwoMeshesMeet)
                                   {a, b, {6, 0, 2}}, {a, {6, 0, 2}, {6, 0, -2}}};  // floor: 2, 3
     TracedScene s(*ctx, tris, GetParam());
     std::mt19937_64 rng(23);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
     enum Family { FromOutsideTheWall, FromBelowTheFloor, FromInside };
     std::vector<dev::PathState> paths;
     std::vector<Family> family;
     const int perFamily = 20000;
     for (Family f : {FromOutsideTheWall, FromBelowTheFloor, FromInside})
         for (int i = 0; i < perFamily; ++i) {
-            const float angle = 0.05f + 1.47f * u(rng);  // from the horizontal, in (0, pi/2)
-            glm::vec3 d(std::cos(angle), -std::sin(angle), 0.3f * (u(rng) - 0.5f));
+            glm::vec3 d = rightAndDown(rng);
             if (f == FromBelowTheFloor)
                 d = glm::vec3(-d.x, -d.y, d.z);
             else if (f == FromInside)
                 d = glm::vec3(-d.x, d.y, d.z);
-            d = glm::normalize(d);
-            const glm::vec3 target(2e-6f * (2.0f * u(rng) - 1.0f), 2e-6f * (2.0f * u(rng) - 1.0f), 2.0f * u(rng) - 1.0f);
-            const glm::vec3 org = target - 10.0f * d;
-            dev::PathState p{};
-            p.org = {org.x, org.y, org.z, 0.0f};
-            p.dir = {d.x, d.y, d.z, 0.0f};
-            p.flags = FEN_PATH_ALIVE;
-            paths.push_back(p);
+            paths.push_back(towardsTheEdge(rng, d));
             family.push_back(f);
         }
     const auto hits = closestSurfaces(*ctx, s, paths);
@@ -405,18 +420,10 @@ TEST_P(Robust, NoLightUnderAWallStandingOnASplitFloor)
                                   {a, {6, 0, 2}, b}, {a, {6, 0, -2}, {6, 0, 2}}};        // floor, x >= 0
     TracedScene s(*ctx, tris, GetParam());
     std::mt19937_64 rng(29);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
     std::vector<dev::PathState> paths;
     for (int i = 0; i < 40000; ++i) {
-        const float angle = 0.05f + 1.47f * u(rng);
-        const glm::vec3 d = glm::normalize(glm::vec3(std::cos(angle), -std::sin(angle), 0.3f * (u(rng) - 0.5f)));
-        const glm::vec3 target(2e-6f * (2.0f * u(rng) - 1.0f), 2e-6f * (2.0f * u(rng) - 1.0f), 2.0f * u(rng) - 1.0f);
-        const glm::vec3 org = target - 10.0f * d;
-        dev::PathState p{};
-        p.org = {org.x, org.y, org.z, 0.0f};
-        p.dir = {d.x, d.y, d.z, 0.0f};
-        p.flags = FEN_PATH_ALIVE;
-        paths.push_back(p);
+        const glm::vec3 d = rightAndDown(rng);
+        paths.push_back(towardsTheEdge(rng, d));
     }
     const auto hits = closestSurfaces(*ctx, s, paths);
     std::size_t beyond = 0, misses = 0;
