@@ -68,12 +68,14 @@ static inline int triangle_in_front(float3 a, float3 n, float toward, float3 q0,
  * rays aimed within 2 micrometres of such an edge did it: tests/kernels/robustness_test.cpp). So
  * when the hit lies within 16 offsets of its triangle's edge (about 0.1 mm in a room), every
  * triangle the ray crosses within 2^-18 t + 16 offsets of the hit, before or after it, is a rival,
- * and a rival comes first if it lies wholly on the ray's side of the hit's plane
- * (triangle_in_front: its vertices are metres from that plane or on it, so the signs are sure
- * where t's order is not). A coplanar neighbour (the same surface) never displaces the hit, nor
- * does a triangle running on behind it (a floor under a wall standing on it: which side of the
- * wall the ray met the floor is as unsure as t, and the hit is kept). Deterministic: the rivals
- * are judged in the walk's fixed order. */
+ * and a rival comes first if it lies wholly on the ray's side of the hit's plane (a wall met
+ * before the floor it stands on), or the hit lies wholly beyond the rival's plane (a floor
+ * whose edge meets a wall's face part way up, met through that wall). Either is decided by
+ * triangle_in_front: vertices metres from the plane or on it, so the signs are sure where t's
+ * order is not. A coplanar neighbour (the same surface) never displaces the hit, nor does a
+ * triangle reaching to both sides of it (a floor running on under a wall standing on it: which
+ * side of the wall the ray met the floor is as unsure as t, and the hit is kept).
+ * Deterministic: the rivals are judged in the walk's fixed order. */
 static inline SurfaceHit closest_surface(global const BvhNode* nodes, global const TriPacket4* packets,
                                          float3 org, float3 dir)
 {
@@ -107,15 +109,18 @@ static inline SurfaceHit closest_surface(global const BvhNode* nodes, global con
                     continue;
                 float3 q0, q1, q2;
                 hit_triangle(packets, leaf * 4u + lane, &q0, &q1, &q2);
-                if (triangle_in_front(p0, c, dot(org - p0, c), q0, q1, q2, 16.0f * offset_m)) {
-                    /* the rival lies wholly on the ray's side of the hit's plane: the ray reached it first */
+                const float3 cq = cross(q1 - q0, q2 - q0);
+                if (triangle_in_front(p0, c, dot(org - p0, c), q0, q1, q2, 16.0f * offset_m) ||
+                    triangle_in_front(q0, cq, -dot(org - q0, cq), p0, p1, p2, 16.0f * offset_m)) {
+                    /* the rival lies wholly on the ray's side of the hit's plane, or the hit wholly
+                       beyond the rival's: the ray reached the rival first */
                     h.prim = prim;
                     h.u = fen_lane(b1, lane);
                     h.v = fen_lane(b2, lane);
                     p0 = q0;
                     p1 = q1;
                     p2 = q2;
-                    c = cross(p1 - p0, p2 - p0);
+                    c = cq;
                 }
             }
         }

@@ -437,6 +437,36 @@ TEST_P(Robust, NoLightUnderAWallStandingOnASplitFloor)
     EXPECT_EQ(misses, 0u);
 }
 
+// An upper floor (y = 0, x from 0 to 6) whose edge meets the face of a wall (x = 0) running from
+// y = -1.5 to 1.5 past it, as a house's storey meets its facade: rays from outside the wall
+// (x < 0), from above and from below the floor's level, aimed within 2 micrometres of the line
+// where they meet, reach the wall, never the floor behind it.
+TEST_P(Robust, NoLightOntoAFloorThroughTheWallItMeets)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    std::vector<Triangle> tris = {{{0, -1.5f, -2}, {0, 1.5f, -2}, {0, 1.5f, 2}}, {{0, -1.5f, -2}, {0, 1.5f, 2}, {0, -1.5f, 2}},  // wall
+                                  {{0, 0, -2}, {0, 0, 2}, {6, 0, 2}}, {{0, 0, -2}, {6, 0, 2}, {6, 0, -2}}};  // floor: 2, 3
+    TracedScene s(*ctx, tris, GetParam());
+    std::mt19937_64 rng(31);
+    std::vector<dev::PathState> paths;
+    for (int i = 0; i < 40000; ++i) {
+        glm::vec3 d = rightAndDown(rng);
+        if (i % 2)
+            d.y = -d.y;  // from below the floor's level, upwards
+        paths.push_back(towardsTheEdge(rng, d));
+    }
+    const auto hits = closestSurfaces(*ctx, s, paths);
+    std::size_t floor = 0, misses = 0;
+    for (const auto& h : hits) {
+        std::uint32_t prim;
+        std::memcpy(&prim, &h.normal.w, 4);
+        misses += prim == FEN_INVALID_ID;
+        floor += prim == 2u || prim == 3u;
+    }
+    EXPECT_EQ(floor, 0u) << "rays reached the floor through the wall";
+    EXPECT_EQ(misses, 0u);
+}
+
 INSTANTIATE_TEST_SUITE_P(Widths, Robust, ::testing::Values(2, 4, 8),
                          [](const auto& info) { return "bvh" + std::to_string(info.param); });
 
