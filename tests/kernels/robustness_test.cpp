@@ -4,8 +4,10 @@
 // rays leaving a surface (no self-hits), and no light through the edge where two meshes meet.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 
 #include "bench/room_scene.h"
 #include "cl/launch.h"
@@ -329,6 +331,22 @@ std::vector<dev::SurfaceHit> closestSurfaces(ocl::Context& ctx, TracedScene& s, 
     return hits;
 }
 
+// Of the hits: the misses, and those on the given primitives.
+struct HitCount {
+    std::size_t misses = 0, on = 0;
+};
+HitCount countHits(const std::vector<dev::SurfaceHit>& hits, std::initializer_list<std::uint32_t> prims)
+{
+    HitCount c;
+    for (const auto& h : hits) {
+        std::uint32_t prim;
+        std::memcpy(&prim, &h.normal.w, 4);
+        c.misses += prim == FEN_INVALID_ID;
+        c.on += std::find(prims.begin(), prims.end(), prim) != prims.end();
+    }
+    return c;
+}
+
 // A direction to the right (+x) and down (-y), from near the horizontal to near the vertical, a
 // little along z.
 glm::vec3 rightAndDown(std::mt19937_64& rng)
@@ -425,16 +443,9 @@ TEST_P(Robust, NoLightUnderAWallStandingOnASplitFloor)
         const glm::vec3 d = rightAndDown(rng);
         paths.push_back(towardsTheEdge(rng, d));
     }
-    const auto hits = closestSurfaces(*ctx, s, paths);
-    std::size_t beyond = 0, misses = 0;
-    for (const auto& h : hits) {
-        std::uint32_t prim;
-        std::memcpy(&prim, &h.normal.w, 4);
-        misses += prim == FEN_INVALID_ID;
-        beyond += prim == 4u || prim == 5u;
-    }
-    EXPECT_EQ(beyond, 0u) << "rays reached the floor beyond the wall";
-    EXPECT_EQ(misses, 0u);
+    const HitCount c = countHits(closestSurfaces(*ctx, s, paths), {4u, 5u});
+    EXPECT_EQ(c.on, 0u) << "rays reached the floor beyond the wall";
+    EXPECT_EQ(c.misses, 0u);
 }
 
 // An upper floor (y = 0, x from 0 to 6) whose edge meets the face of a wall (x = 0) running from
@@ -455,16 +466,9 @@ TEST_P(Robust, NoLightOntoAFloorThroughTheWallItMeets)
             d.y = -d.y;  // from below the floor's level, upwards
         paths.push_back(towardsTheEdge(rng, d));
     }
-    const auto hits = closestSurfaces(*ctx, s, paths);
-    std::size_t floor = 0, misses = 0;
-    for (const auto& h : hits) {
-        std::uint32_t prim;
-        std::memcpy(&prim, &h.normal.w, 4);
-        misses += prim == FEN_INVALID_ID;
-        floor += prim == 2u || prim == 3u;
-    }
-    EXPECT_EQ(floor, 0u) << "rays reached the floor through the wall";
-    EXPECT_EQ(misses, 0u);
+    const HitCount c = countHits(closestSurfaces(*ctx, s, paths), {2u, 3u});
+    EXPECT_EQ(c.on, 0u) << "rays reached the floor through the wall";
+    EXPECT_EQ(c.misses, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Widths, Robust, ::testing::Values(2, 4, 8),
