@@ -61,7 +61,7 @@ public:
         render.add_option("--adaptive-guide-share", guideShare_,
                           "With adaptive --adaptive-guide on: the uniform share kept in every learned bounce table (default 0.25)");
         render.add_option("--adaptive-guide-voxels", guideVoxels_,
-                          "With adaptive --adaptive-guide on: guide voxels across the scene's bounding radius (default 4)");
+                          "With adaptive --adaptive-guide on: guide voxels across the scene's bounding radius, 1..16 (default 4; from 9 on the initial trees need --adaptive-guide-memory 1413 or more)");
         render.add_option("--adaptive-guide-depth", guideDepth_,
                           "With adaptive --adaptive-guide on: finest direction leaves, 2^-D of the square's side, 3..12 (3: a fixed 8 x 8)");
         render.add_option("--adaptive-guide-split", guideSplit_,

@@ -515,6 +515,9 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
                 "--adaptive-guide-space-split 0");
     expectError(run("render " + good + out + " --adaptive-guide-memory 1"), 1, "--adaptive-guide-memory 1");
     expectError(run("render " + good + out + " --adaptive-guide-voxels 17"), 1, "--adaptive-guide-voxels 17");
+    // more voxels than the default memory holds: the message names the voxels and the memory they need
+    expectError(run("render " + good + out + " --adaptive-guide-voxels 16"), 1,
+                "--adaptive-guide-voxels 16: needs --adaptive-guide-memory 1413 or more");
     expectError(run("render " + good + out + " --adaptive-guide-vertices all"), 1, "--adaptive-guide-vertices 'all'");
     // weight windows: a rule, at least two branches, a survival that is not 0, only with the guide
     expectError(run("render " + good + out + " --adaptive-window on"), 1, "--adaptive-window 'on'");
