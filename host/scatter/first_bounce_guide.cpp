@@ -91,15 +91,16 @@ void validateGuideOptions(const GuideOptions& o)
     const double cells = latticeCells(o.voxelsAcross), slots = FEN_GUIDE_SIDES * cells * cells * cells;
     const double initialMiB =
         (slots * (16.0 + 16.0 * kInitialNodes + kBytesPerLeaf * kInitialLeaves) + 4.0 * cells * cells * cells) / kMiB;
-    // Named by the option the user more likely changed: more voxels need more memory.
-    if (o.memoryMiB <= 16384.0 && !(o.memoryMiB >= 2.0 * initialMiB) && o.voxelsAcross != GuideOptions{}.voxelsAcross)
-        throw Error(cat("--adaptive-guide-voxels ", o.voxelsAcross, ": needs --adaptive-guide-memory ",
-                        std::ceil(2.0 * initialMiB), " or more (twice what its initial trees take; ",
-                        o.memoryMiB, " MiB given)"));
-    if (!(o.memoryMiB >= 2.0 * initialMiB && o.memoryMiB <= 16384.0))
+    if (!(o.memoryMiB >= 2.0 * initialMiB && o.memoryMiB <= 16384.0)) {
+        // too little for more voxels than the default: named by the option the user more likely changed
+        if (o.memoryMiB <= 16384.0 && o.voxelsAcross != GuideOptions{}.voxelsAcross)
+            throw Error(cat("--adaptive-guide-voxels ", o.voxelsAcross, ": needs --adaptive-guide-memory ",
+                            std::ceil(2.0 * initialMiB), " or more (twice what its initial trees take; ",
+                            o.memoryMiB, " MiB given)"));
         throw Error(cat("--adaptive-guide-memory ", o.memoryMiB, ": must be in ", std::ceil(2.0 * initialMiB),
                         "..16384 MiB (at least twice what the initial trees of ", o.voxelsAcross,
                         " voxels across the radius take)"));
+    }
 }
 
 // Quadrant q (bit 0: the upper half in x, bit 1 in y) of the square of side 2^-depth at (x0, y0),

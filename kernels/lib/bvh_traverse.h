@@ -170,8 +170,8 @@ static inline Hit bvh_intersect_closest_at(const global BvhNode* nodes,
             if (tm < hit.t) {
                 const int lane = (t.s0 == tm) ? 0 : ((t.s1 == tm) ? 1 : ((t.s2 == tm) ? 2 : 3));
                 hit.t = tm;
-                hit.u = lane == 0 ? b1.s0 : (lane == 1 ? b1.s1 : (lane == 2 ? b1.s2 : b1.s3));
-                hit.v = lane == 0 ? b2.s0 : (lane == 1 ? b2.s1 : (lane == 2 ? b2.s2 : b2.s3));
+                hit.u = fen_lane(b1, (uint)lane);
+                hit.v = fen_lane(b2, (uint)lane);
                 hit.prim = p->prim[lane];
                 *packet_lane = ((cur & ~FEN_LEAF_BIT) << 2) | (uint)lane;
             }

@@ -11,12 +11,6 @@
 #include "lib/ray_offset.h"
 #include "lib/scene_access.h"
 
-/* Lane k of v. */
-static inline float fen_lane(float4 v, uint k)
-{
-    return k == 0u ? v.s0 : (k == 1u ? v.s1 : (k == 2u ? v.s2 : v.s3));
-}
-
 /* The hit's triangle, read from the packet traversal has just tested. */
 static inline void hit_triangle(global const TriPacket4* packets, uint packet_lane, float3* p0, float3* p1,
                                 float3* p2)
@@ -91,10 +85,11 @@ static inline SurfaceHit closest_surface(global const BvhNode* nodes, global con
     float3 p0, p1, p2;
     hit_triangle(packets, packet_lane, &p0, &p1, &p2);
     float offset_m;
-    surface_point(p0, p1, p2, h.u, h.v, &offset_m);
+    float3 x = surface_point(p0, p1, p2, h.u, h.v, &offset_m);
     float3 c = cross(p1 - p0, p2 - p0);
-    if (near_triangle_edge(p1 - p0, p2 - p0, c, h.u, h.v, 16.0f * offset_m)) {
-        const float reach = 0x1p-18f * h.t + 16.0f * offset_m;
+    const float guard_m = 16.0f * offset_m; /* the first hit's, for every rival */
+    if (near_triangle_edge(p1 - p0, p2 - p0, c, h.u, h.v, guard_m)) {
+        const float reach = 0x1p-18f * h.t + guard_m;
         RayPre w = r;
         w.tmin = fmax(h.t - reach, 0.0f);
         w.tmax = h.t + reach;
@@ -110,8 +105,8 @@ static inline SurfaceHit closest_surface(global const BvhNode* nodes, global con
                 float3 q0, q1, q2;
                 hit_triangle(packets, leaf * 4u + lane, &q0, &q1, &q2);
                 const float3 cq = cross(q1 - q0, q2 - q0);
-                if (triangle_in_front(p0, c, dot(org - p0, c), q0, q1, q2, 16.0f * offset_m) ||
-                    triangle_in_front(q0, cq, -dot(org - q0, cq), p0, p1, p2, 16.0f * offset_m)) {
+                if (triangle_in_front(p0, c, dot(org - p0, c), q0, q1, q2, guard_m) ||
+                    triangle_in_front(q0, cq, -dot(org - q0, cq), p0, p1, p2, guard_m)) {
                     /* the rival lies wholly on the ray's side of the hit's plane, or the hit wholly
                        beyond the rival's: the ray reached the rival first */
                     h.prim = prim;
@@ -121,11 +116,11 @@ static inline SurfaceHit closest_surface(global const BvhNode* nodes, global con
                     p1 = q1;
                     p2 = q2;
                     c = cq;
+                    x = surface_point(p0, p1, p2, h.u, h.v, &offset_m);
                 }
             }
         }
     }
-    const float3 x = surface_point(p0, p1, p2, h.u, h.v, &offset_m);
     s.pos = (float4)(x, offset_m);
     s.normal = (float4)(normalize(c), as_float(h.prim));
     return s;

@@ -51,6 +51,12 @@ static inline float4 tri_packet_intersect(const global TriPacket4* p, const RayP
     return select((float4)(INFINITY), t, ok);
 }
 
+/* Lane k of a packet's per-lane results (t, b1, b2). */
+static inline float fen_lane(float4 v, uint k)
+{
+    return k == 0u ? v.s0 : (k == 1u ? v.s1 : (k == 2u ? v.s2 : v.s3));
+}
+
 /* Smallest lane (lanes are finite or +inf, never NaN). */
 static inline float tri_packet_min(float4 t)
 {
