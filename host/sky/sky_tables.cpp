@@ -2,6 +2,11 @@
 #include "sky/sky_tables.h"
 
 #include <algorithm>
+#include <cstring>
+#include <limits>
+
+#include "shared/fen_render.h"
+#include "util/error.h"
 
 namespace fen {
 
@@ -20,6 +25,8 @@ SkyTables makeSkyTables(const std::optional<Goniogram>& sky)
         t.theta.push_back(static_cast<float>(th));
     for (double ph : g.phi())
         t.phi.push_back(static_cast<float>(ph));
+    appendSkySearch(t.theta);
+    appendSkySearch(t.phi);
     for (double v : g.values()) {
         t.values.push_back(static_cast<float>(v));
         t.maxLuminance_cd_m2 = std::max(t.maxLuminance_cd_m2, v);
@@ -31,6 +38,39 @@ SkyTables makeSkyTables(const std::optional<Goniogram>& sky)
             t.integral_cd_m2_sr += t.cellSin.back();
         }
     return t;
+}
+
+void appendSkySearch(std::vector<float>& nodes, std::uint32_t bucketsPerNode)
+{
+    const std::size_t n = nodes.size();
+    if (n < 2 || n > 0xffff)
+        throw Error(cat("sky table: ", n, " nodes on an axis (2 to 65535 can be searched)"));
+    // lib/sky.h sky_node_search's answer for a real x: the largest i < n - 1 with nodes[i] <= x
+    const auto answer = [&](double x) {
+        std::size_t i = 0;
+        while (i + 2 < n && static_cast<double>(nodes[i + 1]) <= x)
+            ++i;
+        return i;
+    };
+    const double last = nodes.back();
+    const std::uint32_t buckets = bucketsPerNode * static_cast<std::uint32_t>(n);
+    const float scale = static_cast<float>(buckets / last);
+    // the device's bucket of x comes from x * scale in float: off from the exact one by rounding
+    // (a few 1e-7 of x), far inside this margin
+    const double margin = 1e-4 * last / buckets + 1e-6 * last;
+    std::vector<float> search(FEN_SKY_SEARCH_HINTS + buckets);
+    search[FEN_SKY_SEARCH_SCALE] = scale;
+    std::memcpy(&search[FEN_SKY_SEARCH_BUCKETS], &buckets, 4);
+    for (std::uint32_t b = 0; b < buckets; ++b) {
+        const double x0 = b / static_cast<double>(scale) - margin;
+        const double x1 = b + 1 == buckets ? std::numeric_limits<double>::infinity()
+                                           : (b + 1) / static_cast<double>(scale) + margin;
+        const std::uint32_t lo = static_cast<std::uint32_t>(answer(x0));
+        const std::uint32_t hi = static_cast<std::uint32_t>(std::min(answer(x1) + 1, n - 1));
+        const std::uint32_t word = lo | hi << 16;
+        std::memcpy(&search[FEN_SKY_SEARCH_HINTS + b], &word, 4);
+    }
+    nodes.insert(nodes.end(), search.begin(), search.end());
 }
 
 DeviceSky::DeviceSky(ocl::Context& ctx, const SkyTables& t)

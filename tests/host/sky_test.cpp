@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <random>
 
@@ -14,6 +15,8 @@
 #include "support/error_of.h"
 #include "sky/cie_sky.h"
 #include "sky/goniogram.h"
+#include "sky/sky_tables.h"
+#include "shared/fen_render.h"
 #include "util/error.h"
 
 namespace fen {
@@ -649,6 +652,104 @@ TEST(CieSky, GridsStaySmallAndBuildFast)
     EXPECT_LT(cells, 150000u);
     std::printf("[          ] sun at 3 deg: largest grid %zu cells; 15 types built in %.0f ms\n",
                 cells, ms);
+}
+
+
+// ---------------------------------------------------------------------------------------------
+// The device's node search (host/sky/sky_tables.h appendSkySearch, kernels/lib/sky.h)
+
+// lib/sky.h sky_node_search, step for step in float: x's bucket, then the binary search inside it.
+std::uint32_t bucketedSearch(const std::vector<float>& axis, std::uint32_t n, float x)
+{
+    const float* search = axis.data() + n;
+    std::uint32_t buckets, word;
+    std::memcpy(&buckets, &search[FEN_SKY_SEARCH_BUCKETS], 4);
+    const float f = x * search[FEN_SKY_SEARCH_SCALE];
+    const std::uint32_t b =
+        f > 0.0f ? std::min(static_cast<std::uint32_t>(std::fmin(f, static_cast<float>(buckets))), buckets - 1) : 0;
+    std::memcpy(&word, &search[FEN_SKY_SEARCH_HINTS + b], 4);
+    std::uint32_t lo = word & 0xffffu, hi = word >> 16;
+    while (hi - lo > 1) {
+        const std::uint32_t mid = (lo + hi) >> 1;
+        if (axis[mid] <= x)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+// The full search it stands for: the largest i < n - 1 with nodes[i] <= x.
+std::uint32_t fullSearch(const std::vector<float>& axis, std::uint32_t n, float x)
+{
+    std::uint32_t lo = 0, hi = n - 1;
+    while (hi - lo > 1) {
+        const std::uint32_t mid = (lo + hi) >> 1;
+        if (axis[mid] <= x)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+TEST(SkySearch, EveryBucketHoldsTheFullSearchsAnswer)
+{
+    // Even steps; nodes crowded around a sun (steps of 2e-5 rad beside steps of a degree); the
+    // ground's doubled pi/2; a CIE sky's own nodes on both axes.
+    std::vector<std::vector<double>> axes;
+    std::vector<double> even, crowded = {0.0}, ground;
+    for (int i = 0; i <= 90; ++i)
+        even.push_back(i == 90 ? kHalfPi : i * kDeg);
+    for (double t = kDeg; t < 0.7; t += kDeg)
+        crowded.push_back(t);
+    for (int i = 0; i < 400; ++i)
+        crowded.push_back(0.7 + 2e-5 * i);
+    crowded.push_back(kHalfPi);
+    for (int i = 0; i <= 10; ++i)
+        ground.push_back(i * kHalfPi / 10);
+    for (int i = 0; i <= 10; ++i)
+        ground.push_back(kHalfPi + i * kHalfPi / 10);
+    const Goniogram cie = cieSky(12, 3500.0, 35.0, 200.0);
+    axes = {even, crowded, ground, cie.theta(), cie.phi()};
+    std::mt19937 rng(3);
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+        std::vector<float> axis;
+        for (double v : axes[a])
+            axis.push_back(static_cast<float>(v));
+        const auto n = static_cast<std::uint32_t>(axis.size());
+        appendSkySearch(axis);
+        ASSERT_EQ(axis.size(), n + FEN_SKY_SEARCH_HINTS + 4 * n) << "axis " << a;
+        // every node and its float neighbours, every bucket edge and its neighbours, random
+        // points, and the ends and beyond them
+        std::vector<float> xs = {-1.0f, 0.0f, axis[n - 1], 2 * axis[n - 1], NAN, INFINITY};
+        for (std::uint32_t i = 0; i < n; ++i)
+            xs.insert(xs.end(), {axis[i], std::nextafter(axis[i], -1.0f), std::nextafter(axis[i], 10.0f)});
+        const float scale = axis[n + FEN_SKY_SEARCH_SCALE];
+        for (std::uint32_t b = 0; b <= 4 * n; ++b) {
+            const float e = static_cast<float>(b / static_cast<double>(scale));
+            xs.insert(xs.end(), {e, std::nextafter(e, -1.0f), std::nextafter(e, 10.0f)});
+        }
+        std::uniform_real_distribution<float> u(0.0f, axis[n - 1]);
+        for (int k = 0; k < 20000; ++k)
+            xs.push_back(u(rng));
+        std::size_t checked = 0;
+        for (float x : xs) {
+            ASSERT_EQ(bucketedSearch(axis, n, x), fullSearch(axis, n, x)) << "axis " << a << ", x = " << x;
+            ++checked;
+        }
+        EXPECT_GT(checked, 20000u);
+    }
+    // The doubled horizon node: x = pi/2 reads the ground's row (the second of the two), as the
+    // full search does.
+    std::vector<float> g;
+    for (double v : ground)
+        g.push_back(static_cast<float>(v));
+    appendSkySearch(g);
+    EXPECT_EQ(bucketedSearch(g, 22, static_cast<float>(kHalfPi)), 11u);
+    // Axes the search cannot take.
+    std::vector<float> one = {0.0f};
+    EXPECT_TRUE(contains(errorOf([&] { appendSkySearch(one); }), "1 nodes on an axis"));
 }
 
 }  // namespace
