@@ -43,14 +43,15 @@ SkyTables makeSkyTables(const std::optional<Goniogram>& sky)
 void appendSkySearch(std::vector<float>& nodes, std::uint32_t bucketsPerNode)
 {
     const std::size_t n = nodes.size();
-    if (n < 2 || n > 0xffff)
-        throw Error(cat("sky table: ", n, " nodes on an axis (2 to 65535 can be searched)"));
+    if (n < 2)
+        throw Error(cat("appendSkySearch: an axis of ", n, " nodes (a sky table has at least 2)"));
     // lib/sky.h sky_node_search's answer for a real x: the largest i < n - 1 with nodes[i] <= x
+    // (0 when there is none)
     const auto answer = [&](double x) {
-        std::size_t i = 0;
-        while (i + 2 < n && static_cast<double>(nodes[i + 1]) <= x)
-            ++i;
-        return i;
+        const auto above = std::upper_bound(nodes.begin(), nodes.end(), x,
+                                            [](double v, float node) { return v < static_cast<double>(node); });
+        const std::size_t atOrBelow = static_cast<std::size_t>(above - nodes.begin());
+        return static_cast<std::uint32_t>(std::min(atOrBelow == 0 ? 0 : atOrBelow - 1, n - 2));
     };
     const double last = nodes.back();
     const std::uint32_t buckets = bucketsPerNode * static_cast<std::uint32_t>(n);
@@ -58,19 +59,19 @@ void appendSkySearch(std::vector<float>& nodes, std::uint32_t bucketsPerNode)
     // the device's bucket of x comes from x * scale in float: off from the exact one by rounding
     // (a few 1e-7 of x), far inside this margin
     const double margin = 1e-4 * last / buckets + 1e-6 * last;
-    std::vector<float> search(FEN_SKY_SEARCH_HINTS + buckets);
-    search[FEN_SKY_SEARCH_SCALE] = scale;
-    std::memcpy(&search[FEN_SKY_SEARCH_BUCKETS], &buckets, 4);
+    std::vector<std::uint32_t> search(FEN_SKY_SEARCH_HINTS + 2 * std::size_t{buckets});
+    std::memcpy(&search[FEN_SKY_SEARCH_SCALE], &scale, 4);
+    search[FEN_SKY_SEARCH_BUCKETS] = buckets;
     for (std::uint32_t b = 0; b < buckets; ++b) {
         const double x0 = b / static_cast<double>(scale) - margin;
         const double x1 = b + 1 == buckets ? std::numeric_limits<double>::infinity()
                                            : (b + 1) / static_cast<double>(scale) + margin;
-        const std::uint32_t lo = static_cast<std::uint32_t>(answer(x0));
-        const std::uint32_t hi = static_cast<std::uint32_t>(std::min(answer(x1) + 1, n - 1));
-        const std::uint32_t word = lo | hi << 16;
-        std::memcpy(&search[FEN_SKY_SEARCH_HINTS + b], &word, 4);
+        search[FEN_SKY_SEARCH_HINTS + 2 * b] = answer(x0);
+        search[FEN_SKY_SEARCH_HINTS + 2 * b + 1] = std::min(answer(x1) + 1, static_cast<std::uint32_t>(n - 1));
     }
-    nodes.insert(nodes.end(), search.begin(), search.end());
+    const std::size_t at = nodes.size();
+    nodes.resize(at + search.size());
+    std::memcpy(&nodes[at], search.data(), search.size() * 4);
 }
 
 DeviceSky::DeviceSky(ocl::Context& ctx, const SkyTables& t)

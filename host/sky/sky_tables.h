@@ -26,8 +26,8 @@ struct SkyTables {
 };
 SkyTables makeSkyTables(const std::optional<Goniogram>& sky);
 
-// Appends to an axis's node angles (n >= 2, non-decreasing, from 0, at most 65535 of them) the
-// buckets that bound lib/sky.h's search (FEN_SKY_SEARCH_*): bucketsPerNode n of them over
+// Appends to an axis's node angles (n >= 2, non-decreasing, from 0) the buckets that bound
+// lib/sky.h's search (FEN_SKY_SEARCH_*): bucketsPerNode n of them over
 // [0, the last node], each holding the search's answers at its ends, widened by a margin far
 // beyond float rounding, so that every x the device files under the bucket has its answer inside.
 void appendSkySearch(std::vector<float>& nodes, std::uint32_t bucketsPerNode = 4);

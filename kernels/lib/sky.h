@@ -52,8 +52,7 @@ static inline uint sky_node_search(const global float* nodes, uint n, float x)
     const uint buckets = as_uint(search[FEN_SKY_SEARCH_BUCKETS]);
     const float f = x * search[FEN_SKY_SEARCH_SCALE];
     const uint b = f > 0.0f ? min((uint)fmin(f, (float)buckets), buckets - 1u) : 0u; /* NaN: 0 */
-    const uint word = as_uint(search[FEN_SKY_SEARCH_HINTS + b]);
-    uint lo = word & 0xffffu, hi = word >> 16;
+    uint lo = as_uint(search[FEN_SKY_SEARCH_HINTS + 2u * b]), hi = as_uint(search[FEN_SKY_SEARCH_HINTS + 2u * b + 1u]);
     while (hi - lo > 1) {
         const uint mid = (lo + hi) >> 1;
         if (nodes[mid] <= x)

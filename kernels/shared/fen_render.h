@@ -151,8 +151,8 @@ FEN_ASSERT_OFFSET(Connection, guide, 48);
 
 /* The sky's node arrays on the device (host/sky/sky_tables.h, lib/sky.h): each axis's buffer holds
    its n node angles, then, from word n on, what lets a lookup skip most of a binary search over
-   them: the buckets' scale (float, buckets per radian), their count B (uint), and B words, bucket
-   b = floor(x * scale) (clamped to B - 1) holding lo | hi << 16 -- the search for any x in it
+   them: the buckets' scale (float, buckets per radian), their count B (uint), and B pairs of
+   uints (lo, hi), bucket b = floor(x * scale) (clamped to B - 1) -- the search for any x in it
    needs only [lo, hi). */
 #define FEN_SKY_SEARCH_SCALE 0
 #define FEN_SKY_SEARCH_BUCKETS 1
