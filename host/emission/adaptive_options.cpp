@@ -74,6 +74,8 @@ public:
                           "With adaptive --adaptive-guide on: weight windows -- split or cull a path at its first diffuse vertex by the root of its second moment of contributions (moment, the default) or its expected contribution (mean), or off");
         render.add_option("--adaptive-window-vertices", windowVertices_,
                           "With adaptive --adaptive-window mean|moment: where a path not split yet may split, at every diffuse vertex (default) or its first only");
+        render.add_option("--adaptive-window-later", windowLater_,
+                          "With adaptive --adaptive-window-vertices every: past the first vertex a path splits at this many times less weight than its slot's window, 1..64 (default 4)");
         render.add_option("--adaptive-window-split", windowSplit_,
                           "With adaptive --adaptive-window mean|moment: most branches a path splits into, 2..255 (default 16)");
         render.add_option("--adaptive-window-survival", windowSurvival_,
@@ -99,7 +101,7 @@ public:
         const bool tuned = estimate_ || initialSkyDepth_ || maxSkyDepth_ || initialDepth_ || maxDepth_ ||
                            defensive_ || diskShare_ || split_ || firstPass_ || maxCells_ || prior_ || weights_ ||
                            target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_ ||
-                           guideVertices_ || window_ || windowSplit_ || windowSurvival_ || windowVertices_;
+                           guideVertices_ || window_ || windowSplit_ || windowSurvival_ || windowVertices_ || windowLater_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
@@ -147,9 +149,13 @@ public:
         a.guide.windowMinSurvival = windowSurvival_.value_or(a.guide.windowMinSurvival);
         if (windowVertices_)
             a.guide.windowEveryVertex = choice("--adaptive-window-vertices", *windowVertices_, "every", "first");
-        if ((windowSplit_ || windowSurvival_ || windowVertices_) && !a.guide.window)
+        a.guide.windowLater = windowLater_.value_or(a.guide.windowLater);
+        if (windowLater_ && !a.guide.windowEveryVertex)
+            throw Error("--adaptive-window-later: applies past the first vertex, which --adaptive-window-vertices first turns off");
+        if ((windowSplit_ || windowSurvival_ || windowVertices_ || windowLater_) && !a.guide.window)
             throw Error(cat(windowSplit_ ? "--adaptive-window-split"
-                                         : (windowSurvival_ ? "--adaptive-window-survival" : "--adaptive-window-vertices"),
+                                         : (windowSurvival_ ? "--adaptive-window-survival"
+                                                            : (windowLater_ ? "--adaptive-window-later" : "--adaptive-window-vertices")),
                             ": applies with weight windows, which ",
                             window_ ? "--adaptive-window off" : "--adaptive-guide off", " turns off"));
         if (a.guide.window && !a.guide.enabled)
@@ -161,7 +167,7 @@ private:
     std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_, window_, windowVertices_;
     std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_, windowSplit_;
     std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_,
-        windowSurvival_;
+        windowSurvival_, windowLater_;
     std::optional<std::uint64_t> firstPass_;
     std::optional<std::uint32_t> maxCells_;
 };
@@ -245,7 +251,8 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
             {"window_rule", static_cast<int>(a.guide.windowRule)},
             {"window_split_max", a.guide.windowSplitMax},
             {"window_min_survival", a.guide.windowMinSurvival},
-            {"window_every_vertex", a.guide.windowEveryVertex}};
+            {"window_every_vertex", a.guide.windowEveryVertex},
+            {"window_later", a.guide.windowLater}};
 }
 
 }  // namespace fen

@@ -80,6 +80,8 @@ void validateGuideOptions(const GuideOptions& o)
         throw Error(cat("--adaptive-guide-split ", o.splitShare, ": must be in (0, 1]"));
     if (!(o.minLeafConnections >= 1.0))
         throw Error(cat("guide minimum contributions per leaf ", o.minLeafConnections, " must be at least 1"));
+    if (!(o.windowLater >= 1.0 && o.windowLater <= 64.0))
+        throw Error(cat("--adaptive-window-later ", o.windowLater, ": must be in [1, 64] (1: the first vertex's windows)"));
     if (o.windowSplitMax < 2 || o.windowSplitMax > FEN_MAX_BRANCHES)
         throw Error(cat("--adaptive-window-split ", o.windowSplitMax, ": must be in 2..", FEN_MAX_BRANCHES));
     if (!(o.windowMinSurvival > 0.0 && o.windowMinSurvival <= 1.0))
@@ -192,7 +194,7 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
         deviceParams_.window_split_max = static_cast<std::uint32_t>(opt_.windowSplitMax);
         deviceParams_.window_power = opt_.windowRule == GuideOptions::WindowRule::Moment ? 2u : 1u;
         deviceParams_.leaf_slots_at = static_cast<std::uint32_t>(deviceParams_.windows_at + slotCapacity_);
-        deviceParams_.window_every_vertex = opt_.windowEveryVertex ? 1u : 0u;
+        deviceParams_.window_later = opt_.windowEveryVertex ? static_cast<float>(opt_.windowLater) : 0.0f;
     }
     // with weight windows: a word per slot (its window) and per leaf (its slot)
     const std::size_t windowWords = deviceParams_.windows_at ? slotCapacity_ + leafCapacity_ : 0;
@@ -846,6 +848,7 @@ nlohmann::json FirstBounceGuide::report() const
             {"window_split_max", opt_.windowSplitMax},
             {"window_min_survival", opt_.windowMinSurvival},
             {"window_vertices", opt_.windowEveryVertex ? "every" : "first"},
+            {"window_later", opt_.windowEveryVertex ? opt_.windowLater : 0.0},
             {"learn_seconds", learnSeconds_},
             {"learn_seconds_last_pass", lastLearnSeconds_},
             {"memory_bytes", deviceBytes_},

@@ -112,6 +112,13 @@ struct GuideOptions {
     // the inner room 1.3x as efficient, the bay window level and the room 0.97-1.01x
     // (docs/results/guiding.md, "Windows past the first vertex").
     bool windowEveryVertex = true;
+    // ... where the ratio of its weight to the slot's window counts windowLater times over: the
+    // windows, learned at first vertices, are that much lower past them. 4 by default: at equal
+    // time it made the house 1.22x and the snow house 1.33x as efficient as 1 (the first vertex's
+    // windows; nine seeds each), the courtyard 1.08x and the inner room 1.12x, and cost the room
+    // 7 % and the bay window 11 %, lit straight through their glass (docs/results/guiding.md,
+    // "Lower windows past the first vertex").
+    double windowLater = 4.0;
     double windowMinVisits = 256.0;
     // No guide: placeholders bound where a strategy has none (GuideParams.slots = 0).
     static GuideOptions off()

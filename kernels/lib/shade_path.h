@@ -20,10 +20,10 @@
  *    light that must bounce outside before it can enter (docs/results/house.md);
  *  - weight windows (guide->params->windows_at): at the first diffuse vertex the ratio of the path's
  *    weight to its slot's window splits (>= 2) or culls (< 1/2) it, in place of the fixed rule;
- *    with guide->params->window_every_vertex, a path not split yet splits at any later diffuse
- *    vertex whose slot's window it passes twice over (splitting only), its branches scattering as
- *    later vertices do. A path splits once at most (FEN_PATH_WAS_SPLIT), so one SplitState holds
- *    its waiting branches;
+ *    with guide->params->window_later > 0, a path not split yet splits at any later diffuse
+ *    vertex where its ratio to the slot's window, times window_later, is 2 or more (splitting
+ *    only), its branches scattering as later vertices do. A path splits once at most
+ *    (FEN_PATH_WAS_SPLIT), so one SplitState holds its waiting branches;
  *  - the guide (guide->params->slots > 0; lib/guide.h): at its first diffuse vertex, and for
  *    every branch of a split there, a path scatters through a leaf drawn from its slot's learned
  *    quadtree, its weight divided by the leaf's density; its later camera connections carry the
@@ -254,10 +254,11 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
             /* weight windows past the first vertex: the light that got in after bouncing outside
                is heavy only once it is in (docs/DESIGN.md §3.4) */
             /* a/w <= a/window_min for every window w: under 2 there, the path splits at no slot */
-            if (guide->params->window_every_vertex && !(p->flags & FEN_PATH_WAS_SPLIT) &&
-                window_ratio(params, cam, p, guide->params->window_min) >= 2.0f) {
+            const float later = guide->params->window_later;
+            if (later > 0.0f && !(p->flags & FEN_PATH_WAS_SPLIT) &&
+                later * window_ratio(params, cam, p, guide->params->window_min) >= 2.0f) {
                 const float w = guide_window(guide, guide_slot(guide, x, n));
-                const float ratio = w > 0.0f ? window_ratio(params, cam, p, w) : 0.0f;
+                const float ratio = w > 0.0f ? later * window_ratio(params, cam, p, w) : 0.0f;
                 if (ratio >= 2.0f)
                     split_path(p, s, x, offset_m, n, prim, (uint)fmin(ratio, (float)guide->params->window_split_max),
                                FEN_SPLIT_LATER, t);

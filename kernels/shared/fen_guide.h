@@ -110,8 +110,9 @@ typedef struct {
     fen_u32 window_power;        /* the power of the values the window statistics sum: 1 (rule
                                     `mean`) or 2 (rule `moment`) */
     fen_u32 leaf_slots_at;       /* word offset of the leaves' slots (above); 0 without windows */
-    fen_u32 window_every_vertex; /* 1: a path not split yet may split at any diffuse vertex whose slot
-                                    has a window; 0: at its first only (culling: the first only) */
+    fen_f32 window_later;        /* > 0: a path not split yet may split at any later diffuse vertex whose
+                                    slot has a window, its ratio to it times this there (windows lower
+                                    past the first vertex); 0: at its first only (culling: the first only) */
     fen_f32 window_min;          /* the smallest window of any slot (0: none): a path whose weight is
                                     under twice it splits nowhere, so a later vertex need not find
                                     its slot to know */
@@ -123,7 +124,7 @@ FEN_ASSERT_OFFSET(GuideParams, every_vertex, 48);
 FEN_ASSERT_OFFSET(GuideParams, windows_at, 52);
 FEN_ASSERT_OFFSET(GuideParams, window_split_max, 60);
 FEN_ASSERT_OFFSET(GuideParams, leaf_slots_at, 68);
-FEN_ASSERT_OFFSET(GuideParams, window_every_vertex, 72);
+FEN_ASSERT_OFFSET(GuideParams, window_later, 72);
 FEN_ASSERT_OFFSET(GuideParams, window_min, 76);
 
 FEN_NS_END

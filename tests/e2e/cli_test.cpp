@@ -538,6 +538,14 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
                 "--adaptive-window-vertices 'all': expected every or first");
     expectError(run("render " + good + out + " --adaptive-window off --adaptive-window-vertices first"), 1,
                 "--adaptive-window-vertices: applies with weight windows, which --adaptive-window off turns off");
+    // lower windows past the first vertex: a factor from 1 (the first vertex's) up, only where paths split there
+    expectError(run("render " + good + out + " --adaptive-window-later 0.5"), 1,
+                "--adaptive-window-later 0.5: must be in [1, 64]");
+    expectError(run("render " + good + out + " --adaptive-window-later 65"), 1, "--adaptive-window-later 65");
+    expectError(run("render " + good + out + " --adaptive-window-vertices first --adaptive-window-later 2"), 1,
+                "--adaptive-window-later: applies past the first vertex, which --adaptive-window-vertices first turns off");
+    expectError(run("render " + good + out + " --adaptive-window off --adaptive-window-later 2"), 1,
+                "--adaptive-window-later: applies with weight windows, which --adaptive-window off turns off");
     // splitting: a count of branches, a positive weight unit -- never silently the default
     expectError(run("render " + good + out + " --split 0"), 1, "--split 0");
     expectError(run("render " + good + out + " --split -1"), 1, "--split -1");

@@ -345,26 +345,40 @@ TEST(Analytic, WeightWindowsConserveEnergy)
 TEST(Analytic, WeightWindowsPastTheFirstVertexConserveEnergy)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);
-    // Windows that only split (as by default), at a path's first diffuse vertex alone and then also
-    // at its later ones: a path not split at its first vertex splits at the first later one whose
-    // slot's window its weight passes twice over, its branches scattering as later vertices do.
-    // Both means must hold, and the later vertices must have split paths of their own: more
-    // branches than with the first vertex alone, from the same seed.
-    std::uint64_t branches[2] = {0, 0};
-    for (const bool every : {false, true}) {
-        const auto r = integratingSphere(*ctx, 4u << 20, [every](RenderSettings& s) {
+    // Windows that only split (as by default), at a path's first diffuse vertex alone, then also at
+    // its later ones with the first vertex's windows (--adaptive-window-later 1), then with windows
+    // four times lower there (the default): a path not split at its first vertex splits at the
+    // first later one where its ratio to the slot's window, times that factor, is 2 or more, its
+    // branches scattering as later vertices do. Every mean must hold, and each step must split
+    // more than the one before it, from the same seed.
+    struct Case {
+        bool every;
+        double later;
+        const char* name;
+    };
+    const Case cases[] = {{false, 4.0, "integrating sphere, windows at the first vertex"},
+                          {true, 1.0, "integrating sphere, the first vertex's windows at every vertex"},
+                          {true, 4.0, "integrating sphere, windows 4x lower past the first vertex"}};
+    std::uint64_t branches[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k) {
+        const Case c = cases[k];
+        const auto r = integratingSphere(*ctx, 4u << 20, [c](RenderSettings& s) {
             guided(false)(s);
             s.emission.adaptive.guide.window = true;
             s.emission.adaptive.guide.windowMinVisits = 16.0;
-            s.emission.adaptive.guide.windowEveryVertex = every;
-        }, every ? "integrating sphere, windows at every vertex" : "integrating sphere, windows at the first vertex");
-        EXPECT_EQ(r.counts.windowCulls, 0u) << every;
-        EXPECT_EQ(r.emission["guide"].value("window_vertices", ""), every ? "every" : "first");
-        branches[every] = r.counts.splitBranches;
+            s.emission.adaptive.guide.windowEveryVertex = c.every;
+            s.emission.adaptive.guide.windowLater = c.later;
+        }, c.name);
+        EXPECT_EQ(r.counts.windowCulls, 0u) << c.name;
+        EXPECT_EQ(r.emission["guide"].value("window_vertices", ""), c.every ? "every" : "first");
+        EXPECT_EQ(r.emission["guide"].value("window_later", -1.0), c.every ? c.later : 0.0);
+        branches[k] = r.counts.splitBranches;
     }
-    std::printf("[ windows ] split branches: first vertex %llu, every vertex %llu\n",
-                static_cast<unsigned long long>(branches[0]), static_cast<unsigned long long>(branches[1]));
+    std::printf("[ windows ] split branches: first vertex %llu, every vertex %llu, 4x lower past it %llu\n",
+                static_cast<unsigned long long>(branches[0]), static_cast<unsigned long long>(branches[1]),
+                static_cast<unsigned long long>(branches[2]));
     EXPECT_GT(branches[1], branches[0] + branches[0] / 10) << "no path split past its first vertex";
+    EXPECT_GT(branches[2], branches[1] + branches[1] / 10) << "lower windows past the first vertex split no more";
 }
 
 TEST(Analytic, SkySeenDirectlyAndThroughGlass)
