@@ -658,17 +658,10 @@ TEST(CieSky, GridsStaySmallAndBuildFast)
 // ---------------------------------------------------------------------------------------------
 // The device's node search (host/sky/sky_tables.h appendSkySearch, kernels/lib/sky.h)
 
-// lib/sky.h sky_node_search, step for step in float: x's bucket, then the binary search inside it.
-std::uint32_t bucketedSearch(const std::vector<float>& axis, std::uint32_t n, float x)
+// The binary search over [lo, hi) of lib/sky.h sky_node_search: the largest i in it with
+// nodes[i] <= x.
+std::uint32_t searchBetween(const std::vector<float>& axis, float x, std::uint32_t lo, std::uint32_t hi)
 {
-    const float* search = axis.data() + n;
-    std::uint32_t buckets, lo, hi;
-    std::memcpy(&buckets, &search[FEN_SKY_SEARCH_BUCKETS], 4);
-    const float f = x * search[FEN_SKY_SEARCH_SCALE];
-    const std::uint32_t b =
-        f > 0.0f ? std::min(static_cast<std::uint32_t>(std::fmin(f, static_cast<float>(buckets))), buckets - 1) : 0;
-    std::memcpy(&lo, &search[FEN_SKY_SEARCH_HINTS + 2 * b], 4);
-    std::memcpy(&hi, &search[FEN_SKY_SEARCH_HINTS + 2 * b + 1], 4);
     while (hi - lo > 1) {
         const std::uint32_t mid = (lo + hi) >> 1;
         if (axis[mid] <= x)
@@ -679,18 +672,24 @@ std::uint32_t bucketedSearch(const std::vector<float>& axis, std::uint32_t n, fl
     return lo;
 }
 
+// sky_node_search, step for step in float: x's bucket, then the search inside its bounds.
+std::uint32_t bucketedSearch(const std::vector<float>& axis, std::uint32_t n, float x)
+{
+    const float* search = axis.data() + n;
+    std::uint32_t buckets, lo, hi;
+    std::memcpy(&buckets, &search[FEN_SKY_SEARCH_BUCKETS], 4);
+    const float f = x * search[FEN_SKY_SEARCH_SCALE];
+    const std::uint32_t b =
+        f > 0.0f ? std::min(static_cast<std::uint32_t>(std::fmin(f, static_cast<float>(buckets))), buckets - 1) : 0;
+    std::memcpy(&lo, &search[FEN_SKY_SEARCH_HINTS + 2 * b], 4);
+    std::memcpy(&hi, &search[FEN_SKY_SEARCH_HINTS + 2 * b + 1], 4);
+    return searchBetween(axis, x, lo, hi);
+}
+
 // The full search it stands for: the largest i < n - 1 with nodes[i] <= x.
 std::uint32_t fullSearch(const std::vector<float>& axis, std::uint32_t n, float x)
 {
-    std::uint32_t lo = 0, hi = n - 1;
-    while (hi - lo > 1) {
-        const std::uint32_t mid = (lo + hi) >> 1;
-        if (axis[mid] <= x)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return lo;
+    return searchBetween(axis, x, 0, n - 1);
 }
 
 TEST(SkySearch, EveryBucketHoldsTheFullSearchsAnswer)
