@@ -48,7 +48,7 @@ kernel void spawn_probe(global const float4* tri, global const float2* bary,
     const float3 p0 = tri[3 * i].xyz, p1 = tri[3 * i + 1].xyz, p2 = tri[3 * i + 2].xyz;
     float offset_m;
     const float3 p = surface_point(p0, p1, p2, bary[i].x, bary[i].y, &offset_m);
-    const float3 ng = cross(p1 - p0, p2 - p0);
+    const float3 ng = normalize(cross(p1 - p0, p2 - p0)); /* unit, as surface_hit() gives it */
     out[i] = (float4)(offset_ray_origin(p, offset_m, ng, dir[i].xyz), offset_m);
 }
 
@@ -107,6 +107,17 @@ kernel void sky_probe(global const float* theta, global const float* phi, global
     const float3 d = sky_sample(&s, alias_pick(alias, alias_shift, bits.x), u.z, u.w, &w);
     out[i] = (float4)(d, w);
     lum[i] = sky_eval(&s, d);
+}
+
+/* out[i] = (sin(pi t), cos(pi t), acos(t)) of t = in[i] by lib/trig.h (acos only meant for |t| <= 1). */
+kernel void trig_probe(global const float* in, global float4* out, uint n)
+{
+    const uint i = get_global_id(0);
+    if (i >= n)
+        return;
+    float c;
+    const float s = fen_sincospi(in[i], &c);
+    out[i] = (float4)(s, c, fabs(in[i]) <= 1.0f ? fen_acos(in[i]) : 0.0f, 0.0f);
 }
 
 /* out[i] = fresnel_dielectric(cos_i[i], eta). */

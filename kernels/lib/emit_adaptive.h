@@ -93,13 +93,15 @@ static inline int emit_adaptive(const global RenderParams* params, const Adaptiv
         weight = e->params->sun_weight.xyz;
     } else {
         /* uniform in the box of (s, t): cos(theta) = 1 - s, phi = 2 pi t (angles in units of pi
-           for sinpi/cospi) */
+           for fen_sincospi) */
         const float2 st = dirs.xy + dirs.zw * uv;
         const float cos_t = 1.0f - st.x;
         const float sin_t = sqrt(fmax(0.0f, st.x * (2.0f - st.x)));
         const float phi = 2.0f * st.y;
-        const float L = sky_eval_angles(&e->sky, acos(cos_t), phi * FEN_PI);
-        dir = -(float3)(sin_t * sinpi(phi), cos_t, -sin_t * cospi(phi));
+        const float L = sky_eval_angles(&e->sky, fen_acos(cos_t), phi * FEN_PI);
+        float cos_p;
+        const float sin_p = fen_sincospi(phi, &cos_p);
+        dir = -(float3)(sin_t * sin_p, cos_t, -sin_t * cos_p);
         weight = (float3)(L);
     }
 

@@ -38,11 +38,11 @@ static inline float fen_step_away(float x, float dir)
     return dir > 0.0f ? nextafter(x, INFINITY) : (dir < 0.0f ? nextafter(x, -INFINITY) : x);
 }
 
-/* Origin for a ray from surface point p (offset from surface_point, geometric normal n of any
-   length) towards w. */
+/* Origin for a ray from surface point p (offset from surface_point, unit geometric normal n, as
+   surface_hit() gives it) towards w. */
 static inline float3 offset_ray_origin(float3 p, float offset_m, float3 n, float3 w)
 {
-    float3 off = offset_m * normalize(n);
+    float3 off = offset_m * n;
     if (dot(w, off) < 0.0f)
         off = -off;
     const float3 po = p + off;

@@ -5,14 +5,18 @@
 #ifndef FEN_SAMPLING_H
 #define FEN_SAMPLING_H
 
+#include "lib/trig.h"
+
 #define FEN_PI 3.14159265358979323846f
 
-/* Uniform on the unit disk: density 1/pi. (sinpi/cospi: their argument reduction is exact and
-   cheap, where PoCL's sin/cos of angles beyond pi/4 take a slow path -- 7 % of a render.) */
+/* Uniform on the unit disk: density 1/pi. (Angles in units of pi: fen_sincospi's reduction is
+   exact and cheap, where PoCL's sin/cos of angles beyond pi/4 take a slow path.) */
 static inline float2 sample_disk(float u1, float u2)
 {
     const float r = sqrt(u1);
-    return (float2)(r * cospi(2.0f * u2), r * sinpi(2.0f * u2));
+    float c;
+    const float s = fen_sincospi(2.0f * u2, &c);
+    return (float2)(r * c, r * s);
 }
 
 /* Uniform on the unit disk by the concentric map (Shirley and Chiu 1997): density 1/pi, and it
@@ -31,7 +35,9 @@ static inline float2 sample_disk_concentric(float u1, float u2)
         r = b;
         t = 0.5f - 0.25f * (a / b);
     }
-    return (float2)(r * cospi(t), r * sinpi(t));
+    float c;
+    const float s = fen_sincospi(t, &c);
+    return (float2)(r * c, r * s);
 }
 
 /* Two uniforms in (0, 1) from the two halves of 32 random bits, at the centres of 2^16 steps: a
@@ -90,7 +96,8 @@ static inline float3 sample_cosine_hemisphere(float3 n, float u1, float u2)
     const float z = sqrt(fmax(0.0f, 1.0f - dot(d, d)));
     float3 t1, t2;
     orthonormal_basis(n, &t1, &t2);
-    return normalize(d.x * t1 + d.y * t2 + z * n);
+    /* unit within rounding: (t1, t2, n) is orthonormal and |d|^2 + z^2 = 1 */
+    return d.x * t1 + d.y * t2 + z * n;
 }
 
 /* Uniform in the cone of directions within angle acos(cos_max) of unit axis. */
@@ -100,7 +107,9 @@ static inline float3 sample_cone(float3 axis, float cos_max, float u1, float u2)
     const float s = sqrt(fmax(0.0f, 1.0f - c * c));
     float3 t1, t2;
     orthonormal_basis(axis, &t1, &t2);
-    return normalize(s * cospi(2.0f * u2) * t1 + s * sinpi(2.0f * u2) * t2 + c * axis);
+    float cp;
+    const float sp = fen_sincospi(2.0f * u2, &cp);
+    return normalize(s * cp * t1 + s * sp * t2 + c * axis);
 }
 
 /* x in [0,1) with density proportional to (1-x) a + x b, a, b >= 0, a + b > 0 (PBRT-v4's

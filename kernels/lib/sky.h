@@ -90,7 +90,7 @@ static inline float sky_eval(const Sky* s, float3 to_sky)
 {
     if (s->nt < 2 || (to_sky.y <= 0.0f && !sky_has_ground(s)))
         return 0.0f;
-    const float theta = acos(clamp(to_sky.y, -1.0f, 1.0f));
+    const float theta = fen_acos(clamp(to_sky.y, -1.0f, 1.0f));
     float phi = atan2(to_sky.x, -to_sky.z);
     if (phi < 0.0f)
         phi += 2.0f * FEN_PI;
@@ -109,12 +109,14 @@ static inline float3 sky_sample(const Sky* s, uint k, float u_theta, float u_phi
     const float g00 = row0[j], g01 = row0[j + 1], g10 = row1[j], g11 = row1[j + 1];
     const float a = sample_linear(u_theta, g00 + g01, g10 + g11);
     const float b = sample_linear(u_phi, mix(g00, g10, a), mix(g01, g11, a));
-    /* angles in units of pi for sinpi/cospi (lib/sampling.h) */
+    /* angles in units of pi for fen_sincospi (lib/trig.h) */
     const float t = mix(s->theta[i], s->theta[i + 1], a) * (1.0f / FEN_PI);
     const float p = mix(s->phi[j], s->phi[j + 1], b) * (1.0f / FEN_PI);
-    const float st = sinpi(t);
+    float ct, cp;
+    const float st = fen_sincospi(t, &ct);
+    const float sp = fen_sincospi(p, &cp);
     *weight = s->factor[k] * st;
-    return (float3)(st * sinpi(p), cospi(t), -st * cospi(p));
+    return (float3)(st * sp, ct, -st * cp);
 }
 
 #endif /* FEN_SKY_H */

@@ -355,5 +355,50 @@ TEST(Sampling, FresnelMatchesTheHostFormula)
     EXPECT_NEAR(R[n - 1], 0.04f, 1e-6);                  // normal: ((1.5-1)/(1.5+1))^2
 }
 
+// lib/trig.h's polynomials against double precision: sin(pi t), cos(pi t) over the ranges the
+// samplers use ([0, 2] and [-1, 1]) and a few turns beyond, acos over [-1, 1] with its ends. The
+// bounds are the ones trig.h states (1.0e-7, 2.2e-7, 4.1e-7), measured with float arithmetic in
+// the polynomials' fit; a coefficient of the wrong sign or a wrong quadrant misses them by orders of magnitude.
+TEST(Trig, PolynomialsMatchDoublePrecision)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    std::vector<float> t;
+    for (int i = -16384; i <= 16384; ++i)
+        t.push_back(static_cast<float>(i) / 4096.0f); // every quarter turn's edges, in [-4, 4]
+    std::uint64_t x = 0x9E3779B97F4A7C15ull;
+    for (int i = 0; i < 200000; ++i) {
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+        t.push_back(static_cast<float>(static_cast<double>(x >> 40) / 16777216.0 * 2.0 - 1.0) * (i % 2 ? 1.0f : 2.0f));
+    }
+    for (float e : {1.0f, -1.0f, 0.0f, 0.5f, -0.5f, 0.25f, 1.0f - 0x1p-24f, -1.0f + 0x1p-24f, 0x1p-20f})
+        t.push_back(e);
+    const auto n = static_cast<std::uint32_t>(t.size());
+    cl::Kernel k(ctx->program("test_probes.cl"), "trig_probe");
+    cl::Buffer in = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "t", t.data());
+    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, std::size_t{n} * 16, "trig");
+    ocl::setKernelArgs(k, in, out, n);
+    ocl::launch(*ctx, k, "trig_probe", n);
+    std::vector<cl_float4> r(n);
+    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, r.size() * 16, r.data());
+    double worstSin = 0.0, worstCos = 0.0, worstNorm = 0.0, worstAcos = 0.0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const double ti = t[i], s = r[i].s[0], c = r[i].s[1];
+        worstSin = std::max(worstSin, std::fabs(s - std::sin(M_PI * ti)));
+        worstCos = std::max(worstCos, std::fabs(c - std::cos(M_PI * ti)));
+        worstNorm = std::max(worstNorm, std::fabs(s * s + c * c - 1.0));
+        if (std::fabs(ti) <= 1.0)
+            worstAcos = std::max(worstAcos, std::fabs(r[i].s[2] - std::acos(ti)));
+    }
+    std::printf("[ trig     ] worst |error|: sin %.3g, cos %.3g, s^2+c^2-1 %.3g, acos %.3g\n", worstSin, worstCos,
+                worstNorm, worstAcos);
+    EXPECT_LE(worstSin, 1.0e-7);
+    EXPECT_LE(worstCos, 1.0e-7);
+    EXPECT_LE(worstNorm, 2.2e-7);
+    EXPECT_LE(worstAcos, 4.1e-7);
+    EXPECT_EQ(r[n - 9].s[2], 0.0f);  // acos(1) exactly 0
+    EXPECT_EQ(r[n - 9].s[0], 0.0f);  // sin(pi) exactly 0 (t = 1 reduces to r = 0)
+    EXPECT_EQ(r[n - 7].s[1], 1.0f);  // cos(0) exactly 1
+}
+
 }  // namespace
 }  // namespace fen

@@ -16,7 +16,7 @@
 namespace fen {
 namespace {
 
-constexpr const char* kRecordedOn = "pthread-skylake-avx512-Intel(R) Xeon(R) Processor @ 2.80GHz";
+constexpr const char* kRecordedOn = "pthread-skylake-avx512-AMD EPYC";
 
 struct Golden {
     const char* scene;
