@@ -30,11 +30,12 @@ static inline float fen_sincospi(float t, float* c)
                                                       r2 * (2.5497607654114436f + r2 * -0.5890095917569235f)));
     const float c0 = 1.0f + r2 * (-4.9348021582840325f +
                                   r2 * (4.058706922939532f + r2 * (-1.3350359351270602f + r2 * 0.23126112728437054f)));
-    /* rotate by k quarter turns */
+    /* rotate by q = k mod 4 quarter turns: an odd q swaps sine and cosine, q = 2, 3 negate the
+       sine and q = 1, 2 the cosine */
     const int q = (int)k & 3;
-    const float s = q == 0 ? s0 : (q == 1 ? c0 : (q == 2 ? -s0 : -c0));
-    *c = q == 0 ? c0 : (q == 1 ? -s0 : (q == 2 ? -c0 : s0));
-    return s;
+    const float a = (q & 1) ? c0 : s0, b = (q & 1) ? s0 : c0;
+    *c = ((q + 1) & 2) ? -b : b;
+    return (q & 2) ? -a : a;
 }
 
 /* acos(x) for x in [-1, 1]. */
