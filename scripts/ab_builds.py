@@ -68,16 +68,15 @@ def main():
                         render(binary, scene, a.method, a.seconds, a.width, rnd, out, extra))
                 continue
             # pairs: seeds 2r-1 and 2r, the builds in turn for each seed
-            first = {}
+            first = {}  # build -> (its first seed's image, that render's JSON)
             for name, binary in builds.items():
-                first[name] = os.path.join(a.out, "%s_%s_%d.exr" % (scene, name, 2 * rnd - 1))
-                first[name + "json"] = render(binary, scene, a.method, a.seconds, a.width, 2 * rnd - 1,
-                                              first[name], extra)
+                out = os.path.join(a.out, "%s_%s_%d.exr" % (scene, name, 2 * rnd - 1))
+                first[name] = (out, render(binary, scene, a.method, a.seconds, a.width, 2 * rnd - 1, out, extra))
             for name, binary in builds.items():
                 out = os.path.join(a.out, "%s_%s_%d.exr" % (scene, name, 2 * rnd))
+                reference, j0 = first[name]
                 j = render(binary, scene, a.method, a.seconds, a.width, 2 * rnd, out,
-                           extra + ["--reference", first[name]])
-                j0 = first[name + "json"]
+                           extra + ["--reference", reference])
                 # E[(Y1 - Y2)^2] = 2 var per pixel; the round's time is the two renders' mean
                 j["noise_std_err_cd_m2"] = j["rmse_cd_m2"] / math.sqrt(2.0)
                 j["seconds"]["render"] = 0.5 * (j["seconds"]["render"] + j0["seconds"]["render"])
