@@ -72,7 +72,8 @@ void validateGuideOptions(const GuideOptions& o)
     if (!(o.minConnections >= 1.0))
         throw Error(cat("guide minimum contributions ", o.minConnections, " must be at least 1"));
     if (!(o.minGain >= 1.0))
-        throw Error(cat("guide minimum gain ", o.minGain, " must be at least 1"));
+        throw Error(cat("--adaptive-guide-min-gain ", o.minGain, ": must be at least 1 (below 1 a table that "
+                        "promises more variance than the cosine would steer)"));
     if (o.maxDepth < FEN_GUIDE_INITIAL_DEPTH || o.maxDepth > FEN_GUIDE_MAX_DEPTH)
         throw Error(cat("--adaptive-guide-depth ", o.maxDepth, ": must be in ", FEN_GUIDE_INITIAL_DEPTH, "..",
                         FEN_GUIDE_MAX_DEPTH, " (", FEN_GUIDE_INITIAL_DEPTH, ": the initial 8 x 8 leaves, never split)"));

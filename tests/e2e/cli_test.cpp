@@ -412,6 +412,8 @@ TEST(CliRender, AdaptiveReportsItsGrid)
         // weight windows, rule moment, splitting only, by default (DESIGN.md §3.4)
         EXPECT_EQ(e["guide"]["window"], "moment");
         EXPECT_EQ(e["guide"]["window_min_survival"], 1.0);
+        // every slot that has seen enough steers (docs/results/guiding.md)
+        EXPECT_EQ(e["guide"]["min_gain"], 1.0);
     }
     // The relative target is what it says, and as deterministic as the absolute one: the same
     // image whatever the pool size, though its statistics follow the image estimate pass by pass.
@@ -514,6 +516,9 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     expectError(run("render " + good + out + " --adaptive-guide-space-split 0"), 1,
                 "--adaptive-guide-space-split 0");
     expectError(run("render " + good + out + " --adaptive-guide-memory 1"), 1, "--adaptive-guide-memory 1");
+    // ... and the gate is a cut of the second moment, at least 1: below, a table promising more variance would steer
+    expectError(run("render " + good + out + " --adaptive-guide-min-gain 0.5"), 1, "--adaptive-guide-min-gain 0.5");
+    expectError(run("render " + good + out + " --method uniform --adaptive-guide-min-gain 2"), 1, "--method adaptive");
     expectError(run("render " + good + out + " --adaptive-guide-voxels 17"), 1, "--adaptive-guide-voxels 17");
     // more voxels than the default memory holds: the message names the voxels and the memory they need
     expectError(run("render " + good + out + " --adaptive-guide-voxels 16"), 1,

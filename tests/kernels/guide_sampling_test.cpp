@@ -34,6 +34,7 @@ GuideOptions options()
     o.enabled = true;
     o.share = 0.25;
     o.minConnections = 32.0;
+    o.minGain = 2.0;  // the gate under test (the default, 1, steers every slot that has seen enough)
     return o;
 }
 
