@@ -18,8 +18,9 @@
 // share > 0 keeps every leaf drawable, the weights finite and the image unbiased. A slot is
 // guided only when its statistics predict that the table cuts that second moment at least
 // minGain times against the cosine's (sum S / sum S/d). The mixture never predicts a cut below 1
-// (up to the table's rounding), so the default (1) steers every slot that has seen enough: a gate of 2 left unguided
-// the slots whose rare entries through a window were the house's fireflies (options below).
+// (up to the table's rounding), so the default (1) steers every slot that has seen enough: a gate
+// of 2 left unguided the slots whose rare entries through a window were the house's fireflies
+// (options below).
 //
 // Resolution that follows the light, in the slots whose tables steer. The trees start at 8 x 8
 // leaves; after each pass a leaf that held more than splitShare of its slot's m in that pass, with
@@ -70,10 +71,10 @@ struct GuideOptions {
     double share = 0.25;              // the uniform table's share in every learned one
     double minConnections = 32.0;     // contributions a slot needs before it is learned
     // ... and the second-moment cut its table must promise. 1: every slot that has seen enough
-    // steers (a learned mixture never promises less than the cosine). It was 2; at equal time 1
-    // made the house 1.33x as efficient (nine seeds): a third of the house's noise came from the
-    // rare paths that got in through a window after a bounce in slots the gate left unguided --
-    // 3 % of the light (docs/results/guiding.md, "Every slot that has seen enough steers").
+    // steers (a learned mixture never promises a cut below 1). It was 2; at equal time 1
+    // made the house 1.18x as efficient (fifteen seeds): a fifth of the house's variance came from
+    // the rare paths that got in through a window after a bounce in slots the gate left unguided,
+    // 3 % of its light (docs/results/guiding.md, "Every slot that has seen enough steers").
     double minGain = 1.0;
     // Lattice: voxels across the scene's bounding sphere's radius (the cube of side 2R then has
     // the next power of 2 >= 2 voxelsAcross voxels a side). Coarse on purpose: a slot must gather
