@@ -70,6 +70,8 @@ public:
                           "With adaptive --adaptive-guide on: halve a spatial leaf whose slots gathered this many contributions in a pass (default 4096)");
         render.add_option("--adaptive-guide-min-gain", guideMinGain_,
                           "With adaptive --adaptive-guide on: steer a slot only where its table promises to cut the second moment this many times against the cosine, >= 1 (default 1)");
+        render.add_option("--adaptive-guide-min-contributions", guideMinContributions_,
+                          "With adaptive --adaptive-guide on: contributions a slot must have seen before its table may steer, >= 1 (default 32)");
         render.add_option("--adaptive-guide-vertices", guideVertices_,
                           "With adaptive --adaptive-guide on: the diffuse vertices the guide draws at, first (default) or every");
         render.add_option("--adaptive-window", window_,
@@ -103,6 +105,7 @@ public:
         const bool tuned = estimate_ || initialSkyDepth_ || maxSkyDepth_ || initialDepth_ || maxDepth_ ||
                            defensive_ || diskShare_ || split_ || firstPass_ || maxCells_ || prior_ || weights_ ||
                            target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_ || guideMinGain_ ||
+                           guideMinContributions_ ||
                            guideVertices_ || window_ || windowSplit_ || windowSurvival_ || windowVertices_ || windowLater_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
@@ -138,6 +141,7 @@ public:
         a.guide.spatialSplitConnections = guideSpaceSplit_.value_or(a.guide.spatialSplitConnections);
         a.guide.memoryMiB = guideMemory_.value_or(a.guide.memoryMiB);
         a.guide.minGain = guideMinGain_.value_or(a.guide.minGain);
+        a.guide.minConnections = guideMinContributions_.value_or(a.guide.minConnections);
         if (guideVertices_)
             a.guide.everyVertex = choice("--adaptive-guide-vertices", *guideVertices_, "every", "first");
         if (window_) {
@@ -170,7 +174,7 @@ private:
     std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_, window_, windowVertices_;
     std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_, windowSplit_;
     std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_,
-        guideMinGain_,
+        guideMinGain_, guideMinContributions_,
         windowSurvival_, windowLater_;
     std::optional<std::uint64_t> firstPass_;
     std::optional<std::uint32_t> maxCells_;

@@ -70,7 +70,7 @@ void validateGuideOptions(const GuideOptions& o)
     if (o.maxSpatialDepth < 0 || o.maxSpatialDepth > 30)
         throw Error(cat("guide spatial depth ", o.maxSpatialDepth, " must be in 0..30"));
     if (!(o.minConnections >= 1.0))
-        throw Error(cat("guide minimum contributions ", o.minConnections, " must be at least 1"));
+        throw Error(cat("--adaptive-guide-min-contributions ", o.minConnections, ": must be at least 1"));
     if (!(o.minGain >= 1.0))
         throw Error(cat("--adaptive-guide-min-gain ", o.minGain, ": must be at least 1 (below 1 a table that "
                         "promises more variance than the cosine would steer)"));

@@ -519,6 +519,8 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     // ... and the gate is a cut of the second moment, at least 1: below, a table promising more variance would steer
     expectError(run("render " + good + out + " --adaptive-guide-min-gain 0.5"), 1, "--adaptive-guide-min-gain 0.5");
     expectError(run("render " + good + out + " --method uniform --adaptive-guide-min-gain 2"), 1, "--method adaptive");
+    expectError(run("render " + good + out + " --adaptive-guide-min-contributions 0"), 1,
+                "--adaptive-guide-min-contributions 0");
     expectError(run("render " + good + out + " --adaptive-guide-voxels 17"), 1, "--adaptive-guide-voxels 17");
     // more voxels than the default memory holds: the message names the voxels and the memory they need
     expectError(run("render " + good + out + " --adaptive-guide-voxels 16"), 1,
