@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
-#include <thread>
 
 #include <glm/geometric.hpp>
 
@@ -14,24 +12,13 @@
 #include "sky/perez_sky.h"
 #include "sky/weather_sky.h"
 #include "util/error.h"
+#include "util/in_shares.h"
 
 namespace fen {
 
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-
-// work(first, last) over [0, n) in one share per hardware thread, each on its own thread: for
-// items that write only their own results.
-void inShares(std::size_t n, const std::function<void(std::size_t, std::size_t)>& work)
-{
-    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
-    std::vector<std::thread> pool;
-    for (std::size_t t = 0; t < threads; ++t)
-        pool.emplace_back(work, n * t / threads, n * (t + 1) / threads);
-    for (std::thread& t : pool)
-        t.join();
-}
 
 // Whether the record's hour (ending at r.hour) lies within the occupied hours.
 bool occupied(const WeatherRecord& r, const AnnualSettings& s)

@@ -14,6 +14,7 @@
 #include "util/integer_cdf.h"
 #include "util/fixed_point.h"
 #include "util/fnv.h"
+#include "util/in_shares.h"
 
 namespace fen {
 
@@ -234,36 +235,45 @@ void FirstBounceGuide::clearStats()
 // capacity lasts. Marks those slots in promising_. Only the pass's own
 // statistics decide: the quarters a split leaf hands its children are a guess, not evidence of
 // more detail. Returns the splits made.
-std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
+std::size_t FirstBounceGuide::refine(const PassStats& pass)
 {
     struct Candidate {
         double share;
         std::uint32_t slot;
         std::int32_t leaf;
     };
-    std::vector<Candidate> cand;
     promising_.assign(trees_.size(), 0);
-    for (std::uint32_t s = 0; s < trees_.size(); ++s) {
-        const Tree& t = trees_[s];
-        double total = 0.0;
-        for (std::size_t i = 0; i < t.leaves.size(); ++i)
-            total += std::sqrt(pass[s][i].sumSq * t.leaves[i].area());
-        if (!(total > 0.0))
-            continue;
-        // Only where the table will steer (rebuild()'s test, before the integer rounding): a
-        // finer tree where the cosine is kept would cost its descents and buy nothing.
-        const std::vector<double> p = mixture(t);
-        if (p.empty() || !steers(t, p))
-            continue;
-        promising_[s] = 1;
-        for (std::size_t i = 0; i < t.leaves.size(); ++i) {
-            const Leaf& l = t.leaves[i];
-            const double share = std::sqrt(pass[s][i].sumSq * l.area()) / total;
-            if (static_cast<int>(l.depth) < opt_.maxDepth && pass[s][i].connections >= opt_.minLeafConnections &&
-                share > opt_.splitShare)
-                cand.push_back({share, s, static_cast<std::int32_t>(i)});
+    // Each slot lists its own candidates (the slots in shares over the threads); in slot order
+    // they make one list, which the sort below orders by a key that ties nowhere.
+    std::vector<std::vector<Candidate>> found(trees_.size());
+    inShares(trees_.size(), [&](std::size_t s0, std::size_t s1) {
+        for (std::size_t s = s0; s < s1; ++s) {
+            const Tree& t = trees_[s];
+            const double* sumSq = pass.sumSq.data() + pass.first[s];
+            const double* connections = pass.connections.data() + pass.first[s];
+            double total = 0.0;
+            for (std::size_t i = 0; i < t.leaves.size(); ++i)
+                total += std::sqrt(sumSq[i] * t.leaves[i].area());
+            if (!(total > 0.0))
+                continue;
+            // Only where the table will steer (rebuild()'s test, before the integer rounding): a
+            // finer tree where the cosine is kept would cost its descents and buy nothing.
+            const std::vector<double> p = mixture(t);
+            if (p.empty() || !steers(t, p))
+                continue;
+            promising_[s] = 1;
+            for (std::size_t i = 0; i < t.leaves.size(); ++i) {
+                const Leaf& l = t.leaves[i];
+                const double share = std::sqrt(sumSq[i] * l.area()) / total;
+                if (static_cast<int>(l.depth) < opt_.maxDepth && connections[i] >= opt_.minLeafConnections &&
+                    share > opt_.splitShare)
+                    found[s].push_back({share, static_cast<std::uint32_t>(s), static_cast<std::int32_t>(i)});
+            }
         }
-    }
+    }, 64);
+    std::vector<Candidate> cand;
+    for (const auto& f : found)
+        cand.insert(cand.end(), f.begin(), f.end());
     std::sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) {
         return a.share != b.share ? a.share > b.share : (a.slot != b.slot ? a.slot < b.slot : a.leaf < b.leaf);
     });
@@ -276,47 +286,52 @@ std::size_t FirstBounceGuide::refine(const std::vector<std::vector<Leaf>>& pass)
         mark.resize(trees_[cand[k].slot].leaves.size(), 0);
         mark[static_cast<std::size_t>(cand[k].leaf)] = 1;
     }
-    for (std::size_t s = 0; s < trees_.size(); ++s) {
-        if (split[s].empty())
-            continue;
-        const Tree& old = trees_[s];
-        Tree t;
-        t.window = old.window;
-        std::function<std::int32_t(std::int32_t)> copy = [&](std::int32_t n) {
-            const auto at = static_cast<std::int32_t>(t.nodes.size());
-            t.nodes.push_back({});
-            for (int q = 0; q < 4; ++q) {
-                const std::int32_t c = old.nodes[static_cast<std::size_t>(n)][q];
-                std::int32_t made_c;
-                if (c >= 0) {
-                    made_c = copy(c);
-                } else if (!split[s][static_cast<std::size_t>(~c)]) {
-                    made_c = ~static_cast<std::int32_t>(t.leaves.size());
-                    t.leaves.push_back(old.leaves[static_cast<std::size_t>(~c)]);
-                } else {
-                    // Four children with a quarter of the statistics each: the uniform guess until
-                    // the next pass shows more.
-                    const Leaf& p = old.leaves[static_cast<std::size_t>(~c)];
-                    made_c = static_cast<std::int32_t>(t.nodes.size());
-                    t.nodes.push_back({});
-                    for (std::uint32_t k = 0; k < 4; ++k) {
-                        Leaf l = p;
-                        l.scaleTotals(0.25);
-                        const Leaf q = quadrant(p.x0, p.y0, p.depth, k);
-                        l.x0 = q.x0, l.y0 = q.y0, l.depth = q.depth;
-                        t.nodes[static_cast<std::size_t>(made_c)][k] = ~static_cast<std::int32_t>(t.leaves.size());
-                        t.leaves.push_back(l);
-                    }
-                }
-                t.nodes[static_cast<std::size_t>(at)][q] = made_c;
-            }
-            return at;
-        };
-        copy(0);
-        trees_[s] = std::move(t);
-    }
+    inShares(trees_.size(), [&](std::size_t s0, std::size_t s1) {
+        for (std::size_t s = s0; s < s1; ++s)
+            if (!split[s].empty())
+                splitLeaves(trees_[s], split[s]);
+    }, 64);
     leafCount_ += 3 * made;
     return made;
+}
+
+// The tree with every leaf marked in `split` made four, each with a quarter of its statistics: the
+// uniform guess until the next pass shows more.
+void FirstBounceGuide::splitLeaves(Tree& tree, const std::vector<char>& split)
+{
+    const Tree old = std::move(tree);
+    Tree t;
+    t.window = old.window;
+    std::function<std::int32_t(std::int32_t)> copy = [&](std::int32_t n) {
+        const auto at = static_cast<std::int32_t>(t.nodes.size());
+        t.nodes.push_back({});
+        for (int q = 0; q < 4; ++q) {
+            const std::int32_t c = old.nodes[static_cast<std::size_t>(n)][q];
+            std::int32_t made_c;
+            if (c >= 0) {
+                made_c = copy(c);
+            } else if (!split[static_cast<std::size_t>(~c)]) {
+                made_c = ~static_cast<std::int32_t>(t.leaves.size());
+                t.leaves.push_back(old.leaves[static_cast<std::size_t>(~c)]);
+            } else {
+                const Leaf& p = old.leaves[static_cast<std::size_t>(~c)];
+                made_c = static_cast<std::int32_t>(t.nodes.size());
+                t.nodes.push_back({});
+                for (std::uint32_t k = 0; k < 4; ++k) {
+                    Leaf l = p;
+                    l.scaleTotals(0.25);
+                    const Leaf q = quadrant(p.x0, p.y0, p.depth, k);
+                    l.x0 = q.x0, l.y0 = q.y0, l.depth = q.depth;
+                    t.nodes[static_cast<std::size_t>(made_c)][k] = ~static_cast<std::int32_t>(t.leaves.size());
+                    t.leaves.push_back(l);
+                }
+            }
+            t.nodes[static_cast<std::size_t>(at)][q] = made_c;
+        }
+        return at;
+    };
+    copy(0);
+    tree = std::move(t);
 }
 
 // The slot's table before the integer rounding: P(b) = (1 - share) m(b) / sum m + share A(b), with
@@ -352,32 +367,41 @@ bool FirstBounceGuide::steers(const Tree& t, const std::vector<double>& p) const
 // cosine elsewhere; then the flat layout of fen_guide.h.
 void FirstBounceGuide::rebuild()
 {
+    // Each slot's table on its own (the slots in shares over the machine's threads), then the counts.
+    std::vector<char> candidate(trees_.size(), 0);
+    inShares(trees_.size(), [&](std::size_t s0, std::size_t s1) {
+        for (std::size_t s = s0; s < s1; ++s) {
+            Tree& t = trees_[s];
+            t.learned = false;
+            t.alias.clear();
+            for (Leaf& l : t.leaves)
+                l.density = 1.0f;
+            const std::vector<double> w = mixture(t);
+            if (w.empty())
+                continue;  // the cosine: the kernels read only the tree, for the record
+            candidate[s] = 1;
+            const IntegerCdf cdf = makeIntegerCdf(w);
+            std::vector<double> realised(w.size());
+            for (std::size_t b = 0; b < w.size(); ++b)
+                realised[b] = cdf.probability(b);
+            if (!steers(t, realised))
+                continue;  // too little to gain: the cosine, no table read
+            t.learned = true;
+            t.aliasShift = cdf.aliasShift;
+            t.alias = cdf.alias;
+            for (std::size_t b = 0; b < w.size(); ++b)
+                t.leaves[b].density = static_cast<float>(realised[b] / t.leaves[b].area());
+        }
+    }, 64);
     learnedSlots_ = candidateSlots_ = maxDepthSeen_ = 0;
     leafCount_ = 0;
-    for (Tree& t : trees_) {
-        t.learned = false;
-        t.alias.clear();
-        for (Leaf& l : t.leaves) {
-            l.density = 1.0f;
+    for (std::size_t s = 0; s < trees_.size(); ++s) {
+        const Tree& t = trees_[s];
+        for (const Leaf& l : t.leaves)
             maxDepthSeen_ = std::max(maxDepthSeen_, l.depth);
-        }
         leafCount_ += t.leaves.size();
-        const std::vector<double> w = mixture(t);
-        if (w.empty())
-            continue;  // the cosine: the kernels read only the tree, for the record
-        ++candidateSlots_;
-        const IntegerCdf cdf = makeIntegerCdf(w);
-        std::vector<double> realised(w.size());
-        for (std::size_t b = 0; b < w.size(); ++b)
-            realised[b] = cdf.probability(b);
-        if (!steers(t, realised))
-            continue;  // too little to gain: the cosine, no table read
-        ++learnedSlots_;
-        t.learned = true;
-        t.aliasShift = cdf.aliasShift;
-        t.alias = cdf.alias;
-        for (std::size_t b = 0; b < w.size(); ++b)
-            t.leaves[b].density = static_cast<float>(realised[b] / t.leaves[b].area());
+        candidateSlots_ += candidate[s];
+        learnedSlots_ += t.learned;
     }
 
     // The sections of fen_guide.h, each as long as it is used; upload() puts them at their offsets.
@@ -386,28 +410,43 @@ void FirstBounceGuide::rebuild()
     spatialWords_.clear();
     for (const auto& n : spatialNodes_)
         spatialWords_.insert(spatialWords_.end(), {n[0], n[1]});
-    nodeWords_.clear();
-    leafWords_.clear();
-    columnWords_.clear();
-    leafSlotWords_.clear();
+    // Each slot's offsets in turn (records 0-2), then its words in the shares of the threads.
+    std::size_t nodes = 0, leaves = 0, columns = 0;
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
         std::uint32_t* rec = records_.data() + 4 * s;
-        rec[0] = static_cast<std::uint32_t>(nodeWords_.size() / 4);
-        rec[1] = static_cast<std::uint32_t>(leafWords_.size() / 2);
-        rec[2] = static_cast<std::uint32_t>(columnWords_.size() / 2);
-        rec[3] = (t.learned ? FEN_GUIDE_LEARNED | t.aliasShift : 0u) | (isInitial(t) ? FEN_GUIDE_INITIAL : 0u);
-        for (const auto& n : t.nodes)
-            for (int q = 0; q < 4; ++q)
-                nodeWords_.push_back(n[q] >= 0 ? rec[0] + static_cast<std::uint32_t>(n[q])
-                                               : FEN_GUIDE_LEAF | (rec[1] + static_cast<std::uint32_t>(~n[q])));
-        for (const Leaf& l : t.leaves)
-            leafWords_.insert(leafWords_.end(), {floatBits(l.density), l.x0 | (l.y0 << 14) | (l.depth << 28)});
-        if (t.learned)
-            columnWords_.insert(columnWords_.end(), t.alias.begin(), t.alias.end());
-        if (deviceParams_.windows_at)
-            leafSlotWords_.insert(leafSlotWords_.end(), t.leaves.size(), static_cast<std::uint32_t>(s));
+        rec[0] = static_cast<std::uint32_t>(nodes);
+        rec[1] = static_cast<std::uint32_t>(leaves);
+        rec[2] = static_cast<std::uint32_t>(columns / 2);
+        nodes += t.nodes.size();
+        leaves += t.leaves.size();
+        columns += t.learned ? t.alias.size() : 0;
     }
+    nodeWords_.resize(4 * nodes);
+    leafWords_.resize(2 * leaves);
+    columnWords_.resize(columns);
+    leafSlotWords_.resize(deviceParams_.windows_at ? leaves : 0);
+    inShares(trees_.size(), [&](std::size_t s0, std::size_t s1) {
+        for (std::size_t s = s0; s < s1; ++s) {
+            const Tree& t = trees_[s];
+            std::uint32_t* rec = records_.data() + 4 * s;
+            rec[3] = (t.learned ? FEN_GUIDE_LEARNED | t.aliasShift : 0u) | (isInitial(t) ? FEN_GUIDE_INITIAL : 0u);
+            std::uint32_t* node = nodeWords_.data() + 4 * std::size_t{rec[0]};
+            for (const auto& n : t.nodes)
+                for (int q = 0; q < 4; ++q)
+                    *node++ = n[q] >= 0 ? rec[0] + static_cast<std::uint32_t>(n[q])
+                                        : FEN_GUIDE_LEAF | (rec[1] + static_cast<std::uint32_t>(~n[q]));
+            std::uint32_t* leaf = leafWords_.data() + 2 * std::size_t{rec[1]};
+            for (const Leaf& l : t.leaves) {
+                *leaf++ = floatBits(l.density);
+                *leaf++ = l.x0 | (l.y0 << 14) | (l.depth << 28);
+            }
+            if (t.learned)
+                std::copy(t.alias.begin(), t.alias.end(), columnWords_.begin() + 2 * std::ptrdiff_t{rec[2]});
+            if (deviceParams_.windows_at)
+                std::fill_n(leafSlotWords_.begin() + std::ptrdiff_t{rec[1]}, t.leaves.size(), static_cast<std::uint32_t>(s));
+        }
+    }, 64);
     rebuildWindows();
     if (nodeWords_.size() > 4 * nodeCapacity_ || leafWords_.size() > 2 * leafCapacity_ ||
         columnWords_.size() > 2 * columnCapacity_ || trees_.size() > slotCapacity_ ||
@@ -588,33 +627,38 @@ void FirstBounceGuide::learn()
     std::vector<std::uint64_t> windowRaw(deviceParams_.windows_at ? trees_.size() * FEN_GUIDE_WINDOW_WORDS : 0);
     if (!windowRaw.empty())
         ctx_.queue().enqueueReadBuffer(windowStats_, CL_TRUE, 0, windowRaw.size() * 8, windowRaw.data());
-    const std::uint64_t* ww = windowRaw.data();
     const double scale = std::ldexp(1.0, -2 * kStatsFixedPointBits);
-    const std::uint64_t* w = raw.data();
-    std::vector<std::vector<Leaf>> pass(trees_.size());
-    for (std::size_t s = 0; s < trees_.size(); ++s) {
-        pass[s].resize(trees_[s].leaves.size());
-        for (std::size_t i = 0; i < pass[s].size(); ++i, w += FEN_GUIDE_STATS_WORDS) {
-            Leaf& l = trees_[s].leaves[i];
-            // v^2 d(b), d the density the pass drew the leaf with: an estimate of the leaf's S(b).
-            pass[s][i].sumSq = fixed128(w + FEN_GUIDE_SUMSQ_LO) * scale * l.density;
-            pass[s][i].connections = static_cast<double>(w[FEN_GUIDE_CONNECTIONS]);
-            l.sumSq += pass[s][i].sumSq;
-            l.connections += pass[s][i].connections;
-        }
-        if (ww) {
-            // the window's sums, at their scale (the squares at its square): rebuildWindows()
-            Tree& t = trees_[s];
-            t.window.delivered += fixed128(ww + FEN_GUIDE_DELIVERED_LO);
-            t.window.arrived += fixed128(ww + FEN_GUIDE_ARRIVED_LO);
-            t.window.visits += static_cast<double>(ww[FEN_GUIDE_VISITS]);
-            ww += FEN_GUIDE_WINDOW_WORDS;
-        }
-    }
+    PassStats pass;
+    pass.first.resize(trees_.size() + 1, 0);
+    for (std::size_t s = 0; s < trees_.size(); ++s)
+        pass.first[s + 1] = pass.first[s] + trees_[s].leaves.size();
+    pass.sumSq.resize(leafCount_);
+    pass.connections.resize(leafCount_);
     std::vector<double> passConnections(trees_.size(), 0.0);
-    for (std::size_t t = 0; t < pass.size(); ++t)
-        for (const Leaf& l : pass[t])
-            passConnections[t] += l.connections;
+    // Slot by slot, each writing only its own leaves and sums: the slots in shares over the threads.
+    inShares(trees_.size(), [&](std::size_t s0, std::size_t s1) {
+        for (std::size_t s = s0; s < s1; ++s) {
+            Tree& t = trees_[s];
+            const std::uint64_t* w = raw.data() + pass.first[s] * FEN_GUIDE_STATS_WORDS;
+            for (std::size_t i = 0; i < t.leaves.size(); ++i, w += FEN_GUIDE_STATS_WORDS) {
+                Leaf& l = t.leaves[i];
+                const std::size_t at = pass.first[s] + i;
+                // v^2 d(b), d the density the pass drew the leaf with: an estimate of the leaf's S(b).
+                pass.sumSq[at] = fixed128(w + FEN_GUIDE_SUMSQ_LO) * scale * l.density;
+                pass.connections[at] = static_cast<double>(w[FEN_GUIDE_CONNECTIONS]);
+                l.sumSq += pass.sumSq[at];
+                l.connections += pass.connections[at];
+                passConnections[s] += pass.connections[at];
+            }
+            if (!windowRaw.empty()) {
+                // the window's sums, at their scale (the squares at its square): rebuildWindows()
+                const std::uint64_t* ww = windowRaw.data() + s * FEN_GUIDE_WINDOW_WORDS;
+                t.window.delivered += fixed128(ww + FEN_GUIDE_DELIVERED_LO);
+                t.window.arrived += fixed128(ww + FEN_GUIDE_ARRIVED_LO);
+                t.window.visits += static_cast<double>(ww[FEN_GUIDE_VISITS]);
+            }
+        }
+    }, 64);
     lastSplits_ = refine(pass);  // keeps leafCount_
     lastSpatialSplits_ = refineSpace(passConnections);
     rebuild();

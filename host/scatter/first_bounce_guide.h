@@ -225,7 +225,13 @@ private:
     static Leaf quadrant(std::uint32_t x0, std::uint32_t y0, std::uint32_t depth, std::uint32_t q);
     static Tree initialTree();
     static bool isInitial(const Tree& t);  // the full tree of depth FEN_GUIDE_INITIAL_DEPTH
-    std::size_t refine(const std::vector<std::vector<Leaf>>& pass);
+    // One pass's statistics as read: leaf i of slot s at first[s] + i (its S and contributions).
+    struct PassStats {
+        std::vector<std::size_t> first;
+        std::vector<double> sumSq, connections;
+    };
+    std::size_t refine(const PassStats& pass);
+    static void splitLeaves(Tree& tree, const std::vector<char>& split);
     std::size_t refineSpace(const std::vector<double>& passConnections);
     std::size_t nodeCount() const;
     std::vector<double> mixture(const Tree& t) const;
