@@ -109,6 +109,43 @@ TEST(Probes, DivisionAndSqrtRoundAsOnTheHost)
     EXPECT_EQ(roots, 0u);
 }
 
+TEST(Probes, ProductsAndSumsRoundSeparately)
+{
+    // OpenCL lets a compiler fuse a product and a sum into one fused multiply-add, rounded once.
+    // NVIDIA's does by default, across statements too; PoCL's did not (the images were the same
+    // bytes either way). A fused and an unfused edge test can send a ray through a shared edge
+    // to different neighbours, so Context::program turns contraction off for every program:
+    // then each product and each sum rounds on its own, as on the host, on every device.
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    const std::uint32_t n = 1u << 16;
+    std::vector<float> x(n), y(n), c(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const RngBlock r = fen_philox4x32_10({i, 0, 0, 0}, 13, 14);
+        x[i] = std::ldexp(1.0f + fen_u32_to_unit(r.x), static_cast<int>(r.y % 64) - 32);
+        y[i] = std::ldexp(1.0f + fen_u32_to_unit(r.z), static_cast<int>(r.w % 64) - 32);
+    }
+    for (std::uint32_t i = 0; i < n; ++i) {
+        volatile float p = x[i] * y[i];  // volatile: the host's compiler may not fuse either
+        c[i] = -p;
+    }
+    cl::Kernel k(ctx->program("test_probes.cl"), "contract_probe");
+    cl::Buffer dx = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "x", x.data());
+    cl::Buffer dy = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "y", y.data());
+    cl::Buffer dc = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "c", c.data());
+    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 8, "probe results");
+    ocl::setKernelArgs(k, dx, dy, dc, out, n);
+    ocl::launch(*ctx, k, "contract_probe", n);
+    std::vector<float> device(2 * n);
+    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, device.size() * 4, device.data());
+    std::size_t inStatement = 0, acrossStatements = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        inStatement += device[2 * i] != 0.0f;
+        acrossStatements += device[2 * i + 1] != 0.0f;
+    }
+    EXPECT_EQ(inStatement, 0u) << "x * y + c fused in one statement";
+    EXPECT_EQ(acrossStatements, 0u) << "p = x * y; p + c fused across statements";
+}
+
 TEST(Probes, CpuKernelsFlushDenormals)
 {
     // Kernels are built with -cl-denorms-are-zero (host/cl/context.cpp): on x86 a float3's spare
