@@ -53,7 +53,9 @@ PY
     run "adaptive, the default method" --method adaptive
     rm -f "$out"/sweep_tmp.*
 } > "$out/sweep.txt" 2>&1
-{
+if ! command -v mpirun > /dev/null; then
+    echo "no mpirun on this machine: the team's step is not measured" > "$out/team.txt"
+else {
     # Both ranks on the one device: what is checked is that the team's kernels (team_sums.cl) sum
     # exactly on this driver, and what a reduction of a 1920 px film costs where the device is fast.
     export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -68,3 +70,4 @@ PY
     done
     rm -f "$out"/team_one.* "$out"/team_two.*
 } > "$out/team.txt" 2>&1
+fi
