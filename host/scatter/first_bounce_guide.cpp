@@ -622,17 +622,20 @@ void FirstBounceGuide::learn()
     if (!opt_.enabled)
         return;
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<std::uint64_t> raw(leafCount_ * FEN_GUIDE_STATS_WORDS);
+    std::vector<std::uint64_t>& raw = statsRead_;
+    raw.resize(leafCount_ * FEN_GUIDE_STATS_WORDS);
     ctx_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
-    std::vector<std::uint64_t> windowRaw(deviceParams_.windows_at ? trees_.size() * FEN_GUIDE_WINDOW_WORDS : 0);
+    std::vector<std::uint64_t>& windowRaw = windowRead_;
+    windowRaw.resize(deviceParams_.windows_at ? trees_.size() * FEN_GUIDE_WINDOW_WORDS : 0);
     if (!windowRaw.empty())
         ctx_.queue().enqueueReadBuffer(windowStats_, CL_TRUE, 0, windowRaw.size() * 8, windowRaw.data());
     const double scale = std::ldexp(1.0, -2 * kStatsFixedPointBits);
-    PassStats pass;
-    pass.first.resize(trees_.size() + 1, 0);
+    PassStats& pass = pass_;
+    pass.first.resize(trees_.size() + 1);
+    pass.first[0] = 0;
     for (std::size_t s = 0; s < trees_.size(); ++s)
         pass.first[s + 1] = pass.first[s] + trees_[s].leaves.size();
-    pass.sumSq.resize(leafCount_);
+    pass.sumSq.resize(leafCount_);  // every element is written below
     pass.connections.resize(leafCount_);
     std::vector<double> passConnections(trees_.size(), 0.0);
     // Slot by slot, each writing only its own leaves and sums: the slots in shares over the threads.
