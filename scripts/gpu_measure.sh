@@ -2,6 +2,9 @@
 # gpu_measure.sh OUTDIR [DEVICE] — the GPU measurements of docs/results/gpu.md, as one script.
 # Expects built binaries (scripts/setup.sh): build/fenestra (Release). Writes into OUTDIR:
 #   devices.txt        fenestra devices
+#   guide.txt          the default (adaptive, guided) against uniform at equal time on the house, the
+#                      snow house and the courtyard, 3 seeds; and where a default render's time goes
+#                      (the kernels on the device, the learning on the host)
 #   bench_room.json    traversal, procedural room (110k triangles), every BVH layout, vs Embree
 #   bench_spheres.json traversal, spheres (1.09M triangles), every BVH layout, vs Embree
 #   render_bench.txt   bench --render: render rays/s over closest-hit traversal, uniform and portal
@@ -17,6 +20,27 @@ fen=${FEN_BIN:-build/fenestra}
 step() { local limit=$1; shift; echo "+ $*" >&2; timeout "$limit" "$@"; echo "exit $?" >&2; }
 
 step 20 "$fen" devices > "$out/devices.txt" 2>&1
+{
+    # docs/results/guiding.md, "On a GPU": a device this fast waits for the host's learning
+    step 240 python3 scripts/window_study.py --fenestra "$fen" --scenes house,house_snow,courtyard \
+        --seeds 1,2,3 --variants uniform,default --variant uniform '--method uniform' --baseline uniform \
+        --width 160 --time "${FEN_STUDY_SECONDS:-6}" --out "$out/study_tmp" --common "--device $dev" 2>&1 |
+        grep -v '^\s*$'
+    step 40 "$fen" render scenes/house.gltf --device "$dev" --width 160 --time "${FEN_STUDY_SECONDS:-6}" \
+        --no-progress --out "$out/house_tmp.exr" 2>&1 | tail -1
+    python3 - "$out/house_tmp.json" <<'PY' || cat "$out/house_tmp.json"
+import json, sys
+j = json.load(open(sys.argv[1]))
+e = j["emission"]; g = e["guide"]
+print("house, default: paths %d in %d batches, render %.2f s; the kernels on the device %.2f s %s"
+      % (j["paths"], j["batches"], j["seconds"]["render"],
+         sum(v["device_seconds"] for v in j["kernels"].values()),
+         {k: round(v["device_seconds"], 3) for k, v in j["kernels"].items()}))
+print("    learning on the host: emission %.2f s, of which the guide %.2f s in %d passes (the last %.1f ms, %d leaves in %d slots)"
+      % (e["learn_seconds"], g["learn_seconds"], e["passes"], 1e3 * g["learn_seconds_last_pass"], g["leaves"], g["slots"]))
+PY
+    rm -rf "$out/study_tmp" "$out"/house_tmp.*
+} > "$out/guide.txt" 2>&1
 step 60 "$fen" bench --device "$dev" --layout all --rays 16777216 --runs 5 --json \
     > "$out/bench_room.json" 2> "$out/bench_room.err"
 step 100 "$fen" bench spheres --device "$dev" --layout all --rays 16777216 --runs 3 --json \
