@@ -2,11 +2,14 @@
 // write only their own results (so the outcome is the same bytes at any thread count).
 //
 // At most one share per hardware thread (16 at most), and no share smaller than minPerShare items,
-// so that a small n runs on the calling thread alone and pays no thread start.
+// so that a small n runs on the calling thread alone and pays no thread start. An exception in a
+// share reaches the caller (the first share's in order) after every thread has joined, so that an
+// error becomes the command's one-line message rather than std::terminate.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
+#include <exception>
 #include <functional>
 #include <thread>
 #include <vector>
@@ -22,12 +25,23 @@ inline void inShares(std::size_t n, const std::function<void(std::size_t, std::s
         work(0, n);
         return;
     }
+    std::vector<std::exception_ptr> failed(shares);
+    const auto share = [&](std::size_t t) {
+        try {
+            work(n * t / shares, n * (t + 1) / shares);
+        } catch (...) {
+            failed[t] = std::current_exception();
+        }
+    };
     std::vector<std::thread> pool;
     for (std::size_t t = 1; t < shares; ++t)
-        pool.emplace_back(work, n * t / shares, n * (t + 1) / shares);
-    work(0, n / shares);  // the first share on this thread
+        pool.emplace_back(share, t);
+    share(0);  // the first share on this thread
     for (std::thread& t : pool)
         t.join();
+    for (const std::exception_ptr& e : failed)
+        if (e)
+            std::rethrow_exception(e);
 }
 
 }  // namespace fen
