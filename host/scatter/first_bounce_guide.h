@@ -41,7 +41,9 @@
 // so passes drawn from different tables add up), refines the trees, rebuilds every slot's table,
 // uploads the used part of each section and clears the statistics. Deterministic: the statistics
 // are integer sums and every choice is ordered, so the trees after a pass depend only on the seed
-// and the path counts. Off (enabled = false): GuideParams.slots = 0 and small placeholder buffers;
+// and the path counts. The per-slot work runs in shares over the host's threads (util/in_shares.h),
+// each slot writing only its own results, so the bytes are the same at any thread count: a GPU
+// waits while the host learns (docs/results/gpu.md, run 4). Off (enabled = false): GuideParams.slots = 0 and small placeholder buffers;
 // the kernels then scatter exactly as without a guide.
 #pragma once
 
