@@ -367,7 +367,7 @@ bool FirstBounceGuide::steers(const Tree& t, const std::vector<double>& p) const
 // cosine elsewhere; then the flat layout of fen_guide.h.
 void FirstBounceGuide::rebuild()
 {
-    // Each slot's table on its own (the slots in shares over the machine's threads), then the counts.
+    // Each slot's table on its own (the slots in shares over the machine's threads).
     std::vector<char> candidate(trees_.size(), 0);
     inShares(trees_.size(), [&](std::size_t s0, std::size_t s1) {
         for (std::size_t s = s0; s < s1; ++s) {
@@ -393,16 +393,6 @@ void FirstBounceGuide::rebuild()
                 t.leaves[b].density = static_cast<float>(realised[b] / t.leaves[b].area());
         }
     }, 64);
-    learnedSlots_ = candidateSlots_ = maxDepthSeen_ = 0;
-    leafCount_ = 0;
-    for (std::size_t s = 0; s < trees_.size(); ++s) {
-        const Tree& t = trees_[s];
-        for (const Leaf& l : t.leaves)
-            maxDepthSeen_ = std::max(maxDepthSeen_, l.depth);
-        leafCount_ += t.leaves.size();
-        candidateSlots_ += candidate[s];
-        learnedSlots_ += t.learned;
-    }
 
     // The sections of fen_guide.h, each as long as it is used; upload() puts them at their offsets.
     deviceParams_.slots = static_cast<std::uint32_t>(trees_.size());
@@ -410,7 +400,8 @@ void FirstBounceGuide::rebuild()
     spatialWords_.clear();
     for (const auto& n : spatialNodes_)
         spatialWords_.insert(spatialWords_.end(), {n[0], n[1]});
-    // Each slot's offsets in turn (records 0-2), then its words in the shares of the threads.
+    // Each slot's offsets in turn (records 0-2) and the counts, then its words in the threads' shares.
+    learnedSlots_ = candidateSlots_ = maxDepthSeen_ = 0;
     std::size_t nodes = 0, leaves = 0, columns = 0;
     for (std::size_t s = 0; s < trees_.size(); ++s) {
         const Tree& t = trees_[s];
@@ -421,7 +412,12 @@ void FirstBounceGuide::rebuild()
         nodes += t.nodes.size();
         leaves += t.leaves.size();
         columns += t.learned ? t.alias.size() : 0;
+        for (const Leaf& l : t.leaves)
+            maxDepthSeen_ = std::max(maxDepthSeen_, l.depth);
+        candidateSlots_ += candidate[s];
+        learnedSlots_ += t.learned;
     }
+    leafCount_ = leaves;
     nodeWords_.resize(4 * nodes);
     leafWords_.resize(2 * leaves);
     columnWords_.resize(columns);

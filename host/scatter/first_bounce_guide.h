@@ -43,8 +43,9 @@
 // are integer sums and every choice is ordered, so the trees after a pass depend only on the seed
 // and the path counts. The per-slot work runs in shares over the host's threads (util/in_shares.h),
 // each slot writing only its own results, so the bytes are the same at any thread count: a GPU
-// waits while the host learns (docs/results/gpu.md, run 4). Off (enabled = false): GuideParams.slots = 0 and small placeholder buffers;
-// the kernels then scatter exactly as without a guide.
+// waits while the host learns (docs/results/gpu.md, run 4). Off (enabled = false):
+// GuideParams.slots = 0 and small placeholder buffers; the kernels then scatter exactly as
+// without a guide.
 #pragma once
 
 #include <array>
