@@ -20,21 +20,37 @@ namespace {
 
 using namespace fen::dev;
 
-// Runs test_probes.cl's `kernel`(a, b, out, n) over the n pairs a[i], b[i] and returns out, which
-// holds per_item floats for each pair.
-std::vector<float> runPairProbe(ocl::Context& ctx, const char* kernel, const std::vector<float>& a,
-                                const std::vector<float>& b, std::size_t per_item)
+// Runs test_probes.cl's `kernel`(in_0, ..., in_k, out, n) over n items, in_j[i] the inputs of item i,
+// and returns out, which holds per_item floats for each item.
+std::vector<float> runProbe(ocl::Context& ctx, const char* kernel, const std::vector<const std::vector<float>*>& in,
+                            std::size_t per_item)
 {
-    const auto n = static_cast<std::uint32_t>(a.size());
+    const auto n = static_cast<std::uint32_t>(in.front()->size());
     cl::Kernel k(ctx.program("test_probes.cl"), kernel);
-    cl::Buffer da = ctx.buffer(CL_MEM_READ_ONLY, n * 4, "a", a.data());
-    cl::Buffer db = ctx.buffer(CL_MEM_READ_ONLY, n * 4, "b", b.data());
+    std::vector<cl::Buffer> inputs;
+    for (const std::vector<float>* v : in) {
+        inputs.push_back(ctx.buffer(CL_MEM_READ_ONLY, n * 4, "probe input", v->data()));
+        k.setArg(static_cast<cl_uint>(inputs.size() - 1), inputs.back());
+    }
     cl::Buffer out = ctx.buffer(CL_MEM_WRITE_ONLY, n * per_item * 4, "probe results");
-    ocl::setKernelArgs(k, da, db, out, n);
+    k.setArg(static_cast<cl_uint>(in.size()), out);
+    k.setArg(static_cast<cl_uint>(in.size() + 1), n);
     ocl::launch(ctx, k, kernel, n);
     std::vector<float> device(n * per_item);
     ctx.queue().enqueueReadBuffer(out, CL_TRUE, 0, device.size() * 4, device.data());
     return device;
+}
+
+// n pairs of positive floats over twenty orders of magnitude (2^-32 .. 2^32), from the stream (k0, k1).
+void spreadOperands(std::uint32_t n, std::uint32_t k0, std::uint32_t k1, std::vector<float>& a, std::vector<float>& b)
+{
+    a.resize(n);
+    b.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const RngBlock r = fen_philox4x32_10({i, 0, 0, 0}, k0, k1);
+        a[i] = std::ldexp(1.0f + fen_u32_to_unit(r.x), static_cast<int>(r.y % 64) - 32);
+        b[i] = std::ldexp(1.0f + fen_u32_to_unit(r.z), static_cast<int>(r.w % 64) - 32);
+    }
 }
 
 TEST(Probes, SharedStructLayoutMatchesHost)
@@ -93,13 +109,9 @@ TEST(Probes, DivisionAndSqrtRoundAsOnTheHost)
     if (!ctx->info().correctlyRoundedDivSqrt)
         GTEST_SKIP() << ctx->info().label() << " cannot round float division as IEEE 754 does";
     const std::uint32_t n = 1u << 16;
-    std::vector<float> a(n), b(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const RngBlock r = fen_philox4x32_10({i, 0, 0, 0}, 11, 12);
-        a[i] = std::ldexp(1.0f + fen_u32_to_unit(r.x), static_cast<int>(r.y % 64) - 32);
-        b[i] = std::ldexp(1.0f + fen_u32_to_unit(r.z), static_cast<int>(r.w % 64) - 32);
-    }
-    const std::vector<float> device = runPairProbe(*ctx, "divsqrt_probe", a, b, 2);
+    std::vector<float> a, b;
+    spreadOperands(n, 11, 12, a, b);
+    const std::vector<float> device = runProbe(*ctx, "divsqrt_probe", {&a, &b}, 2);
     std::size_t quotients = 0, roots = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
         quotients += device[2 * i] != a[i] / b[i];
@@ -118,25 +130,13 @@ TEST(Probes, ProductsAndSumsRoundSeparately)
     // then each product and each sum rounds on its own, as on the host, on every device.
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     const std::uint32_t n = 1u << 16;
-    std::vector<float> x(n), y(n), c(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const RngBlock r = fen_philox4x32_10({i, 0, 0, 0}, 13, 14);
-        x[i] = std::ldexp(1.0f + fen_u32_to_unit(r.x), static_cast<int>(r.y % 64) - 32);
-        y[i] = std::ldexp(1.0f + fen_u32_to_unit(r.z), static_cast<int>(r.w % 64) - 32);
-    }
+    std::vector<float> x, y, c(n);
+    spreadOperands(n, 13, 14, x, y);
     for (std::uint32_t i = 0; i < n; ++i) {
         volatile float p = x[i] * y[i];  // volatile: the host's compiler may not fuse either
         c[i] = -p;
     }
-    cl::Kernel k(ctx->program("test_probes.cl"), "contract_probe");
-    cl::Buffer dx = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "x", x.data());
-    cl::Buffer dy = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "y", y.data());
-    cl::Buffer dc = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "c", c.data());
-    cl::Buffer out = ctx->buffer(CL_MEM_WRITE_ONLY, n * 8, "probe results");
-    ocl::setKernelArgs(k, dx, dy, dc, out, n);
-    ocl::launch(*ctx, k, "contract_probe", n);
-    std::vector<float> device(2 * n);
-    ctx->queue().enqueueReadBuffer(out, CL_TRUE, 0, device.size() * 4, device.data());
+    const std::vector<float> device = runProbe(*ctx, "contract_probe", {&x, &y, &c}, 2);
     std::size_t inStatement = 0, acrossStatements = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
         inStatement += device[2 * i] != 0.0f;
@@ -161,7 +161,7 @@ TEST(Probes, CpuKernelsFlushDenormals)
     const std::vector<float> a = {tiny, small, 3.0f, -tiny};
     const std::vector<float> b = {1.0f, small, 0.5f, 1.0f};
     ASSERT_GT(tiny * 1.0f, 0.0f) << "the host itself flushes denormals";
-    const std::vector<float> device = runPairProbe(*ctx, "denormal_probe", a, b, 1);
+    const std::vector<float> device = runProbe(*ctx, "denormal_probe", {&a, &b}, 1);
     EXPECT_EQ(device[0], 0.0f) << "a denormal operand was not treated as zero";
     EXPECT_EQ(device[1], 0.0f) << "a denormal result was not flushed to zero";
     EXPECT_EQ(device[2], 1.5f);
