@@ -21,6 +21,9 @@ variant of its own with --variant NAME 'OPTIONS' (repeatable; then list NAME in 
 
 `default` is the options as they are; with --baseline default another option is measured against
 them, e.g. --variants default,def03 --variant def03 '--adaptive-defensive 0.3' --baseline default.
+A variant may also run edited kernels: --variant-kernels NAME DIR sets FEN_KERNEL_DIR=DIR for it
+(with no options of its own unless --variant NAME gives some), e.g. the bound of
+scripts/aim_oracle.py.
 """
 import argparse
 import json
@@ -49,11 +52,19 @@ def main():
     ap.add_argument("--data", default=None, help="append every line to this file")
     ap.add_argument("--variant", nargs=2, action="append", default=[], metavar=("NAME", "OPTIONS"),
                     help="a variant of fenestra's own options, split at spaces")
+    ap.add_argument("--variant-kernels", nargs=2, action="append", default=[], metavar=("NAME", "DIR"),
+                    help="run variant NAME with FEN_KERNEL_DIR=DIR (edited kernels)")
     ap.add_argument("--baseline", default="off", help="the variant the others' efficiency is over (default off)")
     ap.add_argument("--common", default="", help="options for every run, split at spaces (e.g. '--roi X0,Y0,X1,Y1')")
     a = ap.parse_args()
     for name, options in a.variant:
         VARIANTS[name] = options.split()
+    kernels = {}
+    for name, folder in a.variant_kernels:
+        if not os.path.isdir(os.path.join(folder, "lib")):
+            sys.exit(f"window_study.py: --variant-kernels {name}: '{folder}' holds no kernels (no lib/)")
+        kernels[name] = os.path.abspath(folder)
+        VARIANTS.setdefault(name, [])
     os.makedirs(a.out, exist_ok=True)
     variants = a.variants.split(",")
     for v in variants:
@@ -70,7 +81,11 @@ def main():
                 method = [] if "--method" in VARIANTS[v] else ["--method", "adaptive"]
                 cmd = [a.fenestra, "render", f"scenes/{scene}.gltf", *method, "--seed", seed,
                        "--width", str(a.width), "--time", str(a.time), "--no-progress", "--out", stem + ".exr"]
-                subprocess.run(cmd + a.common.split() + VARIANTS[v], check=True, stdout=subprocess.DEVNULL)
+                env = dict(os.environ)
+                env.pop("FEN_KERNEL_DIR", None)
+                if v in kernels:
+                    env["FEN_KERNEL_DIR"] = kernels[v]
+                subprocess.run(cmd + a.common.split() + VARIANTS[v], check=True, stdout=subprocess.DEVNULL, env=env)
                 j = json.load(open(stem + ".json"))
                 c = j["counters"]
                 runs[v] = (j["noise_std_err_cd_m2"], j["seconds"]["render"])
