@@ -105,6 +105,18 @@ def main():
                 if data:
                     data.write(line + "\n")
                     data.flush()
+            # variants that ran before the baseline get their efficiency once it has run
+            if a.baseline in runs:
+                n0, t0 = runs[a.baseline]
+                for v in variants[:variants.index(a.baseline)]:
+                    n, t = runs[v]
+                    e = (n0 * n0 * t0) / (n * n * t)
+                    eff.setdefault((scene, v), []).append(e)
+                    line = f"{scene} seed {seed} {v:7s} efficiency {e:.2f} (over {a.baseline}, which ran after it)"
+                    print(line, flush=True)
+                    if data:
+                        data.write(line + "\n")
+                        data.flush()
     for (scene, v), es in sorted(eff.items()):
         line = f"{scene} {v}: median efficiency {statistics.median(es):.2f} ({', '.join(f'{e:.2f}' for e in es)})"
         print(line)
