@@ -13,7 +13,8 @@ guide could aim there -- not something to ship: the targets are typed in from th
     FEN_KERNEL_DIR=out/oracle/courtyard build/fenestra render scenes/courtyard.gltf --time 20 ...
 
 --vertices first: only a path's first diffuse vertex (the learned guide's own vertex); every: every
-diffuse vertex in a region. The guide's records at a first vertex stay as they are (its learning
+diffuse vertex in a region; later: every vertex in a region but a path's first, which the learned
+guide keeps. The guide's records at a first vertex stay as they are (its learning
 goes on; its tables are not drawn from in a region). The edit is made by anchoring on lines of
 kernels/lib/shade_path.h; if they change, this script says which anchor it missed.
 """
@@ -152,7 +153,7 @@ FIRST = """                                volatile global ulong* counters)
 FIRST_NEW = """                                volatile global ulong* counters, float3 x)
 {
     t->diffuse += 1;
-    const int og = guide->params->slots != 0u ? orc_group(x, n) : -1;
+    const int og = ORC_FIRST && guide->params->slots != 0u ? orc_group(x, n) : -1;
     if (og >= 0) {
         /* the path's record as an unguided first vertex makes it: the guide keeps learning */
         const uint key = guide_leaf(guide, guide_record_of(guide, slot), u.yz);
@@ -187,7 +188,7 @@ HELPERS_BEFORE = "/* The diffuse scatter at a path's first diffuse vertex"
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--targets", required=True, choices=sorted(TARGETS))
-    ap.add_argument("--vertices", choices=("first", "every"), default="every")
+    ap.add_argument("--vertices", choices=("first", "every", "later"), default="every")
     ap.add_argument("--share", type=float, default=0.5, help="the cosine's share of the mixture, (0, 1) (default 0.5)")
     ap.add_argument("--kernels", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "kernels"))
     ap.add_argument("--out", required=True, help="the kernel folder to write (replaced)")
@@ -208,8 +209,8 @@ def main():
     path = os.path.join(a.out, "lib", "shade_path.h")
     src = open(path).read()
     helpers_at = src.find(HELPERS_BEFORE)
-    edits = [(INCLUDE, INCLUDE + "#define ORC_EVERY %d\n" % (a.vertices == "every")), (FIRST, FIRST_NEW),
-             (LATER, LATER_NEW)] + CALLS
+    edits = [(INCLUDE, INCLUDE + "#define ORC_EVERY %d\n#define ORC_FIRST %d\n" % (a.vertices != "first", a.vertices != "later")),
+             (FIRST, FIRST_NEW), (LATER, LATER_NEW)] + CALLS
     for old, new in edits:
         if src.count(old) != 1:
             sys.exit(f"aim_oracle.py: {path}: expected one '{old.splitlines()[0].strip()}', found {src.count(old)}")
