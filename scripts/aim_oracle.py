@@ -19,6 +19,7 @@ goes on; its tables are not drawn from in a region). The edit is made by anchori
 kernels/lib/shade_path.h; if they change, this script says which anchor it missed.
 """
 import argparse
+import math
 import os
 import shutil
 import sys
@@ -31,7 +32,7 @@ HOUSE_BOX = ((0.0, 0.0, 0.0), (10.0, 5.6, 8.0), 0)
 HOUSE_UPPER_WINDOWS = [  # the upper storey's windows into the south room and the camera's room
     (2, 8, 1, 1.0, 2.6, 3.7, 5.1), (2, 8, 1, 4.2, 5.8, 3.7, 5.1), (2, 8, 1, 7.4, 9.0, 3.7, 5.1),
     (2, 0, -1, 1.9, 3.1, 3.7, 5.1), (0, 10, 1, 5.4, 6.6, 3.7, 5.1), (0, 0, -1, 5.4, 6.6, 3.7, 5.1)]
-HOUSE_LOWER_WINDOWS = [
+HOUSE_OTHER_WINDOWS = [  # the ground floor's, and the upper north-east room's
     (2, 8, 1, 1.0, 2.6, 0.9, 2.3), (2, 8, 1, 4.2, 5.8, 0.9, 2.3), (2, 8, 1, 7.4, 9.0, 0.9, 2.3),
     (2, 0, -1, 1.9, 3.1, 0.9, 2.3), (2, 0, -1, 6.9, 8.1, 0.9, 2.3), (2, 0, -1, 6.9, 8.1, 3.7, 5.1),
     (0, 10, 1, 1.4, 2.6, 0.9, 2.3), (0, 10, 1, 5.4, 6.6, 0.9, 2.3), (0, 10, 1, 1.4, 2.6, 3.7, 5.1),
@@ -41,7 +42,7 @@ HOUSE_DOORWAY = (((0.0, 2.8, 4.0), (10.0, 5.6, 8.0), 1), [(2, 4, 1, 3.8, 4.7, 2.
 TARGETS = {
     "courtyard": [(((0.0, 0.0, 0.0), (5.0, 2.8, 4.0), 0), [(2, 0, -1, 1.5, 3.5, 0.9, 2.4)])],
     "house-windows": [(HOUSE_BOX, HOUSE_UPPER_WINDOWS)],
-    "house-all-windows": [(HOUSE_BOX, HOUSE_UPPER_WINDOWS + HOUSE_LOWER_WINDOWS)],
+    "house-all-windows": [(HOUSE_BOX, HOUSE_UPPER_WINDOWS + HOUSE_OTHER_WINDOWS)],
     "house-doorway": [HOUSE_DOORWAY],
     "house-windows+doorway": [(HOUSE_BOX, HOUSE_UPPER_WINDOWS), HOUSE_DOORWAY],
 }
@@ -53,6 +54,7 @@ HEADER = """/* oracle.h -- written by scripts/aim_oracle.py (a bound for guiding
 constant float orc_box[ORC_GROUPS][7] = {%(boxes)s};
 constant int orc_first[ORC_GROUPS + 1] = {%(first)s};
 constant float orc[ORC_N][7] = {%(rects)s};
+constant float orc_imp[ORC_N] = {%(imp)s}; /* each rectangle's weight beside its solid angle (--weights) */
 
 static inline float orc_comp(float3 v, int a) { return a == 0 ? v.x : (a == 1 ? v.y : v.z); }
 static inline float3 orc_point(int i, float u, float v)
@@ -72,8 +74,8 @@ static inline int orc_group(float3 x, float3 n)
     }
     return -1;
 }
-/* each of the group's rectangles' weight seen from x on side n (its solid angle, roughly; 0 if it
-   faces away or lies behind the surface); returns their sum */
+/* each of the group's rectangles' weight seen from x on side n (its solid angle, roughly, times its
+   --weights entry; 0 if it faces away or lies behind the surface); returns their sum */
 static inline float orc_weights(int g, float3 x, float3 n, float* w)
 {
     float W = 0.0f;
@@ -83,7 +85,7 @@ static inline float orc_weights(int g, float3 x, float3 n, float* w)
         const float3 d = orc_point(i, 0.5f, 0.5f) - x;
         const float d2 = dot(d, d);
         const float area = (orc[i][4] - orc[i][3]) * (orc[i][6] - orc[i][5]);
-        w[i - orc_first[g]] = h > 0.0f && dot(n, d) > 0.0f ? area * h / (d2 * sqrt(d2)) : 0.0f;
+        w[i - orc_first[g]] = h > 0.0f && dot(n, d) > 0.0f ? orc_imp[i] * area * h / (d2 * sqrt(d2)) : 0.0f;
         W += w[i - orc_first[g]];
     }
     return W;
@@ -190,6 +192,9 @@ def main():
     ap.add_argument("--targets", required=True, choices=sorted(TARGETS))
     ap.add_argument("--vertices", choices=("first", "every", "later"), default="every")
     ap.add_argument("--share", type=float, default=0.5, help="the cosine's share of the mixture, (0, 1) (default 0.5)")
+    ap.add_argument("--weights", default=None,
+                    help="a weight >= 0 per target rectangle, comma-separated in the targets' order, times its "
+                         "solid angle (default: 1 each)")
     ap.add_argument("--kernels", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "kernels"))
     ap.add_argument("--out", required=True, help="the kernel folder to write (replaced)")
     a = ap.parse_args()
@@ -201,8 +206,18 @@ def main():
         boxes.append("{%s}" % ", ".join(f"{float(v)!r}f" for v in (*lo, *hi, inside)))
         rects += ["{%s}" % ", ".join(f"{float(v)!r}f" for v in r) for r in rs]
         first.append(len(rects))
-    header = HEADER % {"share": repr(a.share), "groups": len(groups), "n": len(rects), "boxes": ", ".join(boxes),
-                       "first": ", ".join(map(str, first)), "rects": ", ".join(rects)}
+    imp = [1.0] * len(rects)
+    if a.weights is not None:
+        try:
+            imp = [float(v) for v in a.weights.split(",")]
+        except ValueError:
+            sys.exit(f"aim_oracle.py: --weights '{a.weights}' is not a list of numbers")
+        if len(imp) != len(rects) or not all(math.isfinite(v) and v >= 0.0 for v in imp) or max(imp) <= 0.0:
+            sys.exit(f"aim_oracle.py: --weights needs one number per target rectangle ({len(rects)} for --targets "
+                     f"{a.targets}), each >= 0, not all 0")
+    header = HEADER % {"imp": ", ".join(f"{v!r}f" for v in imp), "share": repr(a.share), "groups": len(groups),
+                       "n": len(rects), "boxes": ", ".join(boxes), "first": ", ".join(map(str, first)),
+                       "rects": ", ".join(rects)}
     if os.path.exists(a.out):
         shutil.rmtree(a.out)
     shutil.copytree(a.kernels, a.out)

@@ -3,9 +3,11 @@
 // today's kernels/ (patched at anchor lines, so a change there must not leave it silently aiming
 // nowhere), they keep the courtyard's mean (the aim is a one-sample mixture with the cosine, the
 // weight over the mixture's density: unbiased), and they aim (at the same paths and seed the noise
-// is below the learned guide's, which at 2e6 paths has barely begun to steer).
+// is below the learned guide's, which at 2e6 paths has barely begun to steer); and its bad options
+// are a one-line error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -42,6 +44,22 @@ TEST(AimOracle, KeepsTheCourtyardsMeanAndAims)
     EXPECT_LT(std::abs(ma - mb), 4.0 * std::sqrt(sa * sa + sb * sb)) << ma << " against " << mb;
     EXPECT_LT(b["noise_std_err_cd_m2"].get<double>(), a["noise_std_err_cd_m2"].get<double>());
     EXPECT_GT(b["counters"]["guided_vertices"].get<double>(), 0.0);
+}
+
+TEST(AimOracle, BadOptionsAreOneLine)
+{
+    const std::string dir = test::tempDir("aim-oracle-bad");
+    for (const std::string& args : {std::string("--targets courtyard --weights 1,2"),
+                                    std::string("--targets courtyard --weights x"),
+                                    std::string("--targets courtyard --share 1")}) {
+        const std::string cmd = "cd " + std::string(FEN_SOURCE_DIR) + " && /usr/bin/python3 scripts/aim_oracle.py " +
+                                args + " --out " + dir + "/k > " + dir + "/log 2>&1";
+        const int status = std::system(cmd.c_str());
+        EXPECT_NE(status, 0) << args;
+        const std::string log = slurp(dir + "/log");
+        EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 1) << log;
+        EXPECT_NE(log.find("aim_oracle.py: --"), std::string::npos) << log;
+    }
 }
 
 }  // namespace
