@@ -162,8 +162,8 @@ kernel void denormal_probe(global const float* a, global const float* b, global 
 /* c = -(x*y) as the host rounds it: out[2i] = x*y + c in one statement, out[2i+1] = p + c with
    p = x*y in a statement of its own. Rounding the product and then the sum, as the host does, both
    are 0; a compiler that contracts the product and the sum into one fused multiply-add (one
-   rounding) leaves the product's rounding error instead. Context::program turns contraction off
-   for every program. */
+   rounding) leaves the product's rounding error instead. Every program starts with
+   FP_CONTRACT OFF (host/cl/kernel_source.cpp), which this checks a device honours. */
 kernel void contract_probe(global const float* x, global const float* y, global const float* c,
                            global float* out, uint n)
 {

@@ -124,10 +124,9 @@ TEST(Probes, DivisionAndSqrtRoundAsOnTheHost)
 TEST(Probes, ProductsAndSumsRoundSeparately)
 {
     // OpenCL lets a compiler fuse a product and a sum into one fused multiply-add, rounded once.
-    // NVIDIA's does by default, across statements too; PoCL's did not (the images were the same
-    // bytes either way). A fused and an unfused edge test can send a ray through a shared edge
-    // to different neighbours, so Context::program turns contraction off for every program:
-    // then each product and each sum rounds on its own, as on the host, on every device.
+    // A fused and an unfused edge test can send a ray through a shared edge to different
+    // neighbours, so every program starts with FP_CONTRACT OFF (resolveKernelSource): this checks
+    // that the device honours it, each product and each sum rounding on its own as on the host.
     FEN_CL_CONTEXT_OR_SKIP(ctx);
     const std::uint32_t n = 1u << 16;
     std::vector<float> x, y, c(n);
