@@ -223,18 +223,14 @@ def main():
     shutil.copytree(a.kernels, a.out)
     path = os.path.join(a.out, "lib", "shade_path.h")
     src = open(path).read()
-    helpers_at = src.find(HELPERS_BEFORE)
     edits = [(INCLUDE, INCLUDE + "#define ORC_EVERY %d\n#define ORC_FIRST %d\n" % (a.vertices != "first", a.vertices != "later")),
              (FIRST, FIRST_NEW), (LATER, LATER_NEW)] + CALLS
+    # the oracle's functions need scatter_diffuse(), so they go after it, before scatter_first()
+    edits.append((HELPERS_BEFORE, header + "\n" + HELPERS_BEFORE))
     for old, new in edits:
         if src.count(old) != 1:
             sys.exit(f"aim_oracle.py: {path}: expected one '{old.splitlines()[0].strip()}', found {src.count(old)}")
         src = src.replace(old, new)
-    if helpers_at < 0:
-        sys.exit(f"aim_oracle.py: {path}: no '{HELPERS_BEFORE}'")
-    # the oracle's functions need scatter_diffuse(), so they go after it, before scatter_first()
-    at = src.find(HELPERS_BEFORE)
-    src = src[:at] + header + "\n" + src[at:]
     open(path, "w").write(src)
     print(f"wrote {a.out}: {len(rects)} target rectangles in {len(groups)} region(s), {a.vertices} vertices, "
           f"cosine share {a.share}")

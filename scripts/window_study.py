@@ -72,6 +72,19 @@ def main():
             sys.exit(f"window_study.py: unknown variant '{v}' (known: {', '.join(VARIANTS)})")
     data = open(a.data, "a") if a.data else None
     eff = {}
+
+    def emit(line):
+        print(line, flush=True)
+        if data:
+            data.write(line + "\n")
+            data.flush()
+
+    def efficiency(scene, v, runs):
+        """Variant v's efficiency over the baseline for this seed, also kept for the medians."""
+        (n0, t0), (n, t) = runs[a.baseline], runs[v]
+        e = (n0 * n0 * t0) / (n * n * t)
+        eff.setdefault((scene, v), []).append(e)
+        return e
     for scene in a.scenes.split(","):
         for seed in a.seeds.split(","):
             runs = {}
@@ -96,32 +109,15 @@ def main():
                         f"culls {c['window_culls'] / 1e6:6.1f}M "
                         f"window_slots {j['emission'].get('guide', {}).get('window_slots', 0)}")
                 if a.baseline in runs and v != a.baseline:
-                    n0, t0 = runs[a.baseline]
-                    n, t = runs[v]
-                    e = (n0 * n0 * t0) / (n * n * t)
-                    eff.setdefault((scene, v), []).append(e)
-                    line += f" efficiency {e:.2f}"
-                print(line, flush=True)
-                if data:
-                    data.write(line + "\n")
-                    data.flush()
+                    line += f" efficiency {efficiency(scene, v, runs):.2f}"
+                emit(line)
             # variants that ran before the baseline get their efficiency once it has run
             if a.baseline in runs:
-                n0, t0 = runs[a.baseline]
                 for v in variants[:variants.index(a.baseline)]:
-                    n, t = runs[v]
-                    e = (n0 * n0 * t0) / (n * n * t)
-                    eff.setdefault((scene, v), []).append(e)
-                    line = f"{scene} seed {seed} {v:7s} efficiency {e:.2f} (over {a.baseline}, which ran after it)"
-                    print(line, flush=True)
-                    if data:
-                        data.write(line + "\n")
-                        data.flush()
+                    emit(f"{scene} seed {seed} {v:7s} efficiency {efficiency(scene, v, runs):.2f} "
+                         f"(over {a.baseline}, which ran after it)")
     for (scene, v), es in sorted(eff.items()):
-        line = f"{scene} {v}: median efficiency {statistics.median(es):.2f} ({', '.join(f'{e:.2f}' for e in es)})"
-        print(line)
-        if data:
-            data.write(line + "\n")
+        emit(f"{scene} {v}: median efficiency {statistics.median(es):.2f} ({', '.join(f'{e:.2f}' for e in es)})")
 
 
 if __name__ == "__main__":
