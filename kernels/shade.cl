@@ -63,7 +63,8 @@ kernel void shade_paths(global const RenderParams* params, global PathState* pat
                         global const float4* prim_uv, global const uint* texels, global const DevCamera* cam,
                         global Connection* connections, global const GuideParams* guide_params,
                         global const uint* guide_tables, volatile global ulong* guide_window_stats,
-                        global const DevSensorInfo* sensor_info, global const DevSensorPlane* sensor_planes,
+                        global const OpeningAim* opening_aim, global const uint2* opening_prims,
+                        volatile global ulong* opening_stats, global const DevSensorInfo* sensor_info, global const DevSensorPlane* sensor_planes,
                         global const DevSensorCell* sensor_cells, global const uint* sensor_bucket_start,
                         global const uint* sensor_bucket_cells, volatile global ulong* sensor_accum,
                         volatile global ulong* sensor_cell_stats, global const float* sensor_steer,
@@ -72,7 +73,7 @@ kernel void shade_paths(global const RenderParams* params, global PathState* pat
     local uint alive_in_group;
     VertexTally tally = {0, 0, 0, 0};
     /* one path a work-item: nothing to hold (lib/guide.h HeldArrivals) */
-    const Guide guide = {guide_params, guide_tables, guide_window_stats, 0};
+    const Guide guide = {guide_params, guide_tables, guide_window_stats, 0, opening_aim, opening_prims, opening_stats};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
     const Sensors sensors = {sensor_info, sensor_planes, sensor_cells, sensor_bucket_start, sensor_bucket_cells,
                              sensor_accum, sensor_cell_stats, sensor_steer, params->fixed_scale, params->stats_scale};

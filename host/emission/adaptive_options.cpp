@@ -84,6 +84,12 @@ public:
                           "With adaptive --adaptive-window mean|moment: most branches a path splits into, 2..255 (default 16)");
         render.add_option("--adaptive-window-survival", windowSurvival_,
                           "With adaptive --adaptive-window mean|moment: least probability a path below its window survives with, (0, 1]; 1 (default): never culled");
+        render.add_option("--adaptive-aim", aim_,
+                          "With adaptive: aim the bounces outside at the glass that leads to the camera, learned, on or off (default on)");
+        render.add_option("--adaptive-aim-share", aimShare_,
+                          "With adaptive --adaptive-aim on: the cosine's share at an aimed vertex, (0, 1) (default 0.75)");
+        render.add_option("--adaptive-aim-power", aimPower_,
+                          "With adaptive --adaptive-aim on: weigh each opening by its learned worth to this power, (0, 2] (default 1)");
         render.add_option("--adaptive-guide-memory", guideMemory_,
                           "With adaptive --adaptive-guide on: MiB of device memory for the guide's trees (default 256)");
         render.add_option("--adaptive-target", target_,
@@ -106,7 +112,8 @@ public:
                            defensive_ || diskShare_ || split_ || firstPass_ || maxCells_ || prior_ || weights_ ||
                            target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_ || guideMinGain_ ||
                            guideMinContributions_ ||
-                           guideVertices_ || window_ || windowSplit_ || windowSurvival_ || windowVertices_ || windowLater_;
+                           guideVertices_ || window_ || windowSplit_ || windowSurvival_ || windowVertices_ || windowLater_ || aim_ ||
+                           aimShare_ || aimPower_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
@@ -167,15 +174,22 @@ public:
                             window_ ? "--adaptive-window off" : "--adaptive-guide off", " turns off"));
         if (a.guide.window && !a.guide.enabled)
             throw Error("--adaptive-window: needs --adaptive-guide on (the windows are learned with the guide)");
+        if (aim_)
+            a.aim.enabled = choice("--adaptive-aim", *aim_, "on", "off");
+        if ((aimShare_ || aimPower_) && !a.aim.enabled)
+            throw Error(cat(aimShare_ ? "--adaptive-aim-share" : "--adaptive-aim-power",
+                            ": applies with the opening aim, which --adaptive-aim off turns off"));
+        a.aim.cosineShare = aimShare_.value_or(a.aim.cosineShare);
+        a.aim.power = aimPower_.value_or(a.aim.power);
         validateAdaptiveOptions(a);
     }
 
 private:
-    std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_, window_, windowVertices_;
+    std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_, window_, windowVertices_, aim_;
     std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_, windowSplit_;
     std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_,
         guideMinGain_, guideMinContributions_,
-        windowSurvival_, windowLater_;
+        windowSurvival_, windowLater_, aimShare_, aimPower_;
     std::optional<std::uint64_t> firstPass_;
     std::optional<std::uint32_t> maxCells_;
 };
@@ -227,6 +241,7 @@ void validateAdaptiveOptions(const AdaptiveOptions& o)
     if (o.maxCells < 1 || o.maxCells > (1u << 22))
         throw Error(cat("--adaptive-max-cells ", o.maxCells, ": must be in 1..4194304"));
     validateGuideOptions(o.guide);
+    validateOpeningAimOptions(o.aim);
 }
 
 std::unique_ptr<StrategyOptionBlock> makeAdaptiveOptionBlock() { return std::make_unique<AdaptiveOptionBlock>(); }
@@ -260,7 +275,10 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
             {"window_split_max", a.guide.windowSplitMax},
             {"window_min_survival", a.guide.windowMinSurvival},
             {"window_every_vertex", a.guide.windowEveryVertex},
-            {"window_later", a.guide.windowLater}};
+            {"window_later", a.guide.windowLater},
+            {"aim", a.aim.enabled},
+            {"aim_share", a.aim.cosineShare},
+            {"aim_power", a.aim.power}};
 }
 
 }  // namespace fen

@@ -13,6 +13,7 @@
 #include "emission/adaptive_grid.h"
 #include "emission/emission_method.h"
 #include "scatter/first_bounce_guide.h"
+#include "scatter/opening_aim.h"
 
 namespace fen {
 
@@ -39,6 +40,8 @@ struct AdaptiveOptions {
     std::uint32_t maxCells = 1u << 15;
     // The first-bounce guide, learned on the same passes (DESIGN.md §3.4).
     GuideOptions guide;
+    // The opening aim, learned on the same passes (DESIGN.md §3.5).
+    OpeningAimOptions aim;
 };
 
 // The name --adaptive-estimate and the JSON give an estimate, and the estimate a name gives

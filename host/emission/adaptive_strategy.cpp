@@ -170,6 +170,8 @@ public:
         createBuffers(scene);
         guide_ = std::make_unique<FirstBounceGuide>(ctx_, opt_.guide, centre_, radius_m_);
         deviceBytes_ += guide_->deviceBytes();
+        aim_ = std::make_unique<OpeningAim>(ctx_, opt_.aim, &scene);
+        deviceBytes_ += aim_->deviceBytes();
         if (opt_.relativeTarget) {
             filmWidth_ = in.filmWidth;
             filmHeight_ = in.filmHeight;
@@ -194,13 +196,15 @@ public:
         k.statsScale = statsScale_;
         k.statsPixelScale = opt_.relativeTarget ? &pixelScale_ : nullptr;
         k.guide = guide_.get();  // off: slots 0, placeholders
+        k.aim = aim_.get();      // off or no glass: nothing aimed at
         return k;
     }
     std::vector<SummedBuffer> summedBuffers() const override
     {
         static_assert(FEN_CELL_SUM_LO == 0 && FEN_CELL_SUMSQ_LO == 2 && FEN_CELL_CONNECTIONS == 4 &&
                           FEN_CELL_STATS_WORDS == 5, "a cell's statistics: two 128-bit sums and a count");
-        return {{&stats_, FEN_CELL_PARTS * grid_->cells().size(), {2, 2, 1}}, guide_->summed(), guide_->windowSummed()};
+        return {{&stats_, FEN_CELL_PARTS * grid_->cells().size(), {2, 2, 1}}, guide_->summed(), guide_->windowSummed(),
+                aim_->summed()};
     }
     void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
     {
@@ -288,6 +292,8 @@ public:
         w.f64s("adaptive.batch_weights", batchWeights_);
         if (opt_.guide.enabled)
             guide_->save(w);
+        if (opt_.aim.enabled)
+            aim_->save(w);
     }
     void loadState(StateReader& r) override
     {
@@ -306,6 +312,8 @@ public:
         ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, grid_->cells().size() * FEN_CELL_PARTS * FEN_CELL_STATS_WORDS * 8);
         if (opt_.guide.enabled)
             guide_->load(r);
+        if (opt_.aim.enabled)
+            aim_->load(r);
         upload();
     }
 
@@ -367,7 +375,8 @@ public:
             {"sun_illuminance_lux", sunY_},
             {"sky_integral_cd_m2_sr", goniogram_ ? goniogram_->integral() : 0.0},
             {"disk_radius_m", radius_m_},
-            {"guide", guide_->report()}};
+            {"guide", guide_->report()},
+            {"aim", aim_->report()}};
         if (portalBase_) {
             j["disk_share"] = opt_.diskShare;
             j["portal_nodes"] = planes_.set.nodes;
@@ -530,6 +539,7 @@ private:
         q.enqueueFillBuffer(stats_, cl_ulong(0), 0, FEN_CELL_PARTS * grid_->cells().size() * FEN_CELL_STATS_WORDS * 8);
         upload();
         guide_->learn();
+        aim_->learn();
     }
 
     ocl::Context& ctx_;
@@ -546,6 +556,7 @@ private:
     std::vector<double> regionArea_, realised_;
     std::unique_ptr<AdaptiveGrid> grid_;
     std::unique_ptr<FirstBounceGuide> guide_;
+    std::unique_ptr<OpeningAim> aim_;
     std::vector<dev::AdaptiveCell> hostCells_;
     std::vector<std::uint32_t> hostAlias_;
     dev::AdaptiveParams deviceParams_{};

@@ -35,6 +35,7 @@
 #include "emission/emission_method.h"
 #include "emission/portal_options.h"
 #include "scatter/first_bounce_guide.h"
+#include "scatter/opening_aim.h"
 #include "scene/scene.h"
 #include "sky/goniogram.h"
 #include "sky/sky_tables.h"
@@ -81,6 +82,8 @@ struct EmissionKernels {
     // The first-bounce guide it learns (perhaps off: placeholders), or nullptr: the kernels then
     // scatter unguided.
     const FirstBounceGuide* guide = nullptr;
+    // The opening aim it learns (perhaps off: placeholders), or nullptr: nothing is aimed at.
+    const OpeningAim* aim = nullptr;
 };
 
 class EmissionStrategy {

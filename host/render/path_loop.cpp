@@ -103,6 +103,12 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     const FirstBounceGuide* guide = ek.guide;
     if (!guide)
         guide = (noGuide_ = std::make_unique<FirstBounceGuide>(ctx, GuideOptions::off(), glm::dvec3(0.0), 1.0)).get();
+    const OpeningAim* aim = ek.aim;
+    if (!aim) {
+        OpeningAimOptions off;
+        off.enabled = false;
+        aim = (noAim_ = std::make_unique<OpeningAim>(ctx, off, nullptr)).get();
+    }
     strategy.bindEmitArgs(emit_, 3);  // checks the arity: the strategy's arguments are the last
     if (mode == KernelMode::Fused) {
         cl_uint a = 0;
@@ -111,6 +117,7 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
                                          &scene.texels(), &cameraBuf_,
                                          &film.accumulators(), ek.cellStats, pixelScale,
                                          &guide->params(), &guide->tables(), &guide->stats(), &guide->windowStats(),
+                                         &aim->aim(), &aim->prims(), &aim->stats(),
                                          &sensors.info(), &sensors.planes(), &sensors.cellTable(),
                                          &sensors.bucketStart(), &sensors.bucketCells(), &sensors.accumulators(),
                                          &sensors.steer()};
@@ -124,11 +131,11 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     ocl::setKernelArgs(intersect_, paths_, hits_, pool, b.nodes(), b.packets());
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
                        scene.primUv(), scene.texels(), cameraBuf_, connections_, guide->params(), guide->tables(),
-                       guide->windowStats(), sensors.info(), sensors.planes(), sensors.cellTable(), sensors.bucketStart(),
+                       guide->windowStats(), aim->aim(), aim->prims(), aim->stats(), sensors.info(), sensors.planes(), sensors.cellTable(), sensors.bucketStart(),
                        sensors.bucketCells(), sensors.accumulators(), *ek.cellStats, sensors.steer(), counters_);
     ocl::setKernelArgs(connect_, paramsBuf_, connections_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), film.accumulators(), *ek.cellStats, *pixelScale, guide->stats(),
-                       guide->windowStats(), counters_);
+                       guide->windowStats(), aim->stats(), counters_);
     ocl::setKernelArgs(cameraPass_, paramsBuf_, cameraBuf_, b.nodes(), b.packets(), scene.primMaterial(),
                        scene.materials(), sky.theta, sky.phi, sky.values, film.cameraSamples(), film.cameraImage(),
                        counters_);

@@ -114,6 +114,7 @@ private:
     cl::Buffer paramsBuf_, counters_, paths_, splits_, hits_, connections_, cameraBuf_;
     cl::Buffer noPixelScale_;  // bound when the strategy weighs no statistics by pixel
     std::unique_ptr<FirstBounceGuide> noGuide_;  // bound (off) when the strategy has no guide
+    std::unique_ptr<OpeningAim> noAim_;          // bound (off) when the strategy has no opening aim
     cl::Kernel emit_, intersect_, shade_, connect_, cameraPass_, fused_;
     double buildSeconds_ = 0.0;
 };

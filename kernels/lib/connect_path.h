@@ -21,6 +21,7 @@
 #include "lib/accumulate.h"
 #include "lib/bvh_traverse.h"
 #include "lib/guide.h"
+#include "lib/opening_aim.h"
 #include "lib/transmittance.h"
 
 static inline void connect_path(global const RenderParams* params, const Connection* c,
@@ -28,7 +29,8 @@ static inline void connect_path(global const RenderParams* params, const Connect
                                 global const uint* prim_material, global const DevMaterial* materials,
                                 volatile global ulong* accum, volatile global ulong* cell_stats,
                                 global const float* stats_pixel_scale, volatile global ulong* guide_stats,
-                                volatile global ulong* window_stats, volatile global ulong* counters)
+                                volatile global ulong* window_stats, volatile global ulong* opening_stats,
+                                volatile global ulong* counters)
 {
     const uint pixel = as_uint(c->org.w);
     const RayPre r = ray_setup(c->org.xyz, c->to_cam.xyz, 0.0f, 1.0f, FEN_BVH_WIDTH);
@@ -39,6 +41,8 @@ static inline void connect_path(global const RenderParams* params, const Connect
         if (c->guide.x > 0.0f)
             guide_record(guide_stats, window_stats, c->guide.x, as_uint(c->guide.y), rgb_luminance(value),
                          c->guide.z, as_uint(c->guide.w), counters);
+        opening_deliver(opening_stats, as_uint(c->to_cam.w), rgb_luminance(value),
+                        params->fixed_scale * FEN_GUIDE_WINDOW_SCALE);
 #ifdef FEN_EMISSION_STATS
         const uint part = as_uint(c->value.w);
         if (!(part & FEN_PART_ESTIMATE_ONLY))

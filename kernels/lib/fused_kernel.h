@@ -36,6 +36,8 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
                         volatile global ulong* cell_stats, global const float* stats_pixel_scale,
                         global const GuideParams* guide_params, global const uint* guide_tables,
                         volatile global ulong* guide_stats, volatile global ulong* guide_window_stats,
+                        global const OpeningAim* opening_aim, global const uint2* opening_prims,
+                        volatile global ulong* opening_stats,
                         global const DevSensorInfo* sensor_info, global const DevSensorPlane* sensor_planes,
                         global const DevSensorCell* sensor_cells, global const uint* sensor_bucket_start,
                         global const uint* sensor_bucket_cells, volatile global ulong* sensor_accum,
@@ -47,7 +49,7 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
     const FEN_EMITTER_TYPE emitter = FEN_EMITTER_MAKE;
     HeldArrivals held;
     held_arrivals_init(&held);
-    const Guide guide = {guide_params, guide_tables, guide_window_stats, &held};
+    const Guide guide = {guide_params, guide_tables, guide_window_stats, &held, opening_aim, opening_prims, opening_stats};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
     ulong emitted = 0, extension = 0, shadow = 0;
     VertexTally tally = {0, 0, 0, 0};
@@ -84,7 +86,7 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
                 const int alive = shade_path(params, &guide, &p, &h, &sm, cam, &c, &split, &tally, counters);
                 if (as_uint(c.org.w) != FEN_INVALID_ID) {
                     connect_path(params, &c, nodes, packets, prim_material, materials, accum, cell_stats,
-                                 stats_pixel_scale, guide_stats, guide_window_stats, counters);
+                                 stats_pixel_scale, guide_stats, guide_window_stats, opening_stats, counters);
                     ++shadow;
                 }
                 if (!alive && !next_branch(params, &guide, &p, &split, &sm, cam, &tally, counters))

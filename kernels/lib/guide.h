@@ -18,6 +18,7 @@
 #define FEN_GUIDE_LIB_H
 
 #include "shared/fen_guide.h"
+#include "shared/fen_openings.h"
 #include "lib/accumulate.h"
 #include "lib/rng.h"
 #include "lib/sampling.h"
@@ -55,6 +56,11 @@ typedef struct {
     global const uint* tables;  /* slot records, nodes, leaves, alias columns (fen_guide.h) */
     volatile global ulong* window_stats; /* per slot (fen_guide.h): the weight windows' sums */
     HeldArrivals* held;                  /* the work-item's own, or 0: arrivals go to memory at once */
+    /* the opening aim (lib/opening_aim.h), learned beside the guide: where paths still outside are
+       aimed, which glass is an opening, and the openings' statistics */
+    global const OpeningAim* aim;
+    global const uint2* opening_prims;
+    volatile global ulong* opening_stats;
 } Guide;
 
 /* The slot of a vertex at x whose light arrived on side n (unit): the spatial leaf x lies in and
@@ -113,6 +119,12 @@ static inline uint guide_leaf(const Guide* g, uint4 r, float2 sq)
         sq = sq * 2.0f - (float2)((float)right, (float)up);
     }
     return r.y; /* unreachable for the host's trees: no deeper than FEN_GUIDE_MAX_DEPTH */
+}
+
+/* The density d(b) the slot's current table draws global leaf `key` with (1: the cosine's). */
+static inline float guide_leaf_density(const Guide* g, uint key)
+{
+    return as_float(g->tables[g->params->leaves_at + 2u * key]);
 }
 
 /* Draws the point of the unit square for learned slot record r from 96 random bits: *key = the

@@ -60,7 +60,7 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
         return;
     const float scale = s->info->fixed_scale;
     const uint cells = s->info->cells, patches = s->info->patches;
-    const uint patch = path_flags >> FEN_PATH_PATCH_SHIFT;
+    const uint patch = (path_flags >> FEN_PATH_PATCH_SHIFT) & FEN_PATH_PATCH_MASK;
     const int tagged = patches && patch < patches; /* always, when the emitter tagged for these sums */
     const int direct = !(path_flags & (FEN_PATH_BRANCHED | FEN_PATH_REFLECTED));
     for (uint k = 0; k < planes; ++k) {

@@ -29,6 +29,12 @@
  *    quadtree, its weight divided by the leaf's density; its later camera connections carry the
  *    record that feeds the table. With guide->params->every_vertex, every later diffuse vertex
  *    whose slot is learned draws from its table too (the record stays the first vertex's);
+ *  - the opening aim (guide->aim->triangles > 0; lib/opening_aim.h, DESIGN.md §3.5): at every
+ *    diffuse vertex of a path that has not passed glass yet, where a learned pane can be aimed at,
+ *    one sample of the mixture of the cosine and a point on the panes, the weight over the
+ *    mixture's density; it comes before the guide's table (the guide keeps its record). The first
+ *    glass a path passes gives it its opening code (the aim's statistics), which a split keeps for
+ *    every branch;
  *  - a path reaching params->max_depth interactions dies (counted, with its flux: a bias that is
  *    reported; the default cap is high enough that only endless paths meet it).
  * Invariant: the result depends only on the path, its hit, its split state, the guide's tables and
@@ -41,11 +47,16 @@
 #include "lib/camera.h"
 #include "lib/fresnel.h"
 #include "lib/guide.h"
+#include "lib/opening_aim.h"
 #include "lib/ray_offset.h"
 #include "lib/rng.h"
 #include "lib/sampling.h"
 #include "lib/scene_access.h"
 #include "lib/texture.h"
+
+#if FEN_SPLIT_COUNT_MASK != ((1u << FEN_PATH_OPENING_SHIFT) - 1u)
+#error "a split keeps the path's opening code in SplitState.count's bits from FEN_PATH_OPENING_SHIFT up"
+#endif
 
 /* The diffuse scatter on side n (unit) of a surface of albedo rho: Russian roulette from
    params->rr_depth on, else weight times rho; a cosine-weighted direction. Returns 1 with *next if
@@ -101,30 +112,92 @@ static inline int scatter_through(global const RenderParams* params, PathState* 
     return alive;
 }
 
-/* The diffuse scatter at a path's first diffuse vertex (slot: its guide slot): through a leaf of the
-   guide's table when there is a guide, the weight over its density, and the record for what the
-   path delivers from here on (lib/guide.h); else scatter_diffuse(). */
+/* The point of the square the cosine hemisphere around n maps to unit direction v (v . n > 0): the
+   inverse of sample_cosine_hemisphere(), for the guide's record of an aimed direction. */
+static inline float2 cosine_square_of(float3 n, float3 v)
+{
+    float3 t1, t2;
+    orthonormal_basis(n, &t1, &t2);
+    const float a = dot(v, t1), b = dot(v, t2);
+    float turn = 0.5f * atan2pi(b, a);
+    turn = turn < 0.0f ? turn + 1.0f : turn;
+    const float below1 = 0x1.fffffep-1f;
+    return (float2)(fmin(a * a + b * b, below1), fmin(turn, below1));
+}
+
+/* The opening aim's scatter at x (side n) of a path still outside (lib/opening_aim.h): -1 when there
+   is nothing to aim at from x (the caller scatters as it would without the aim); else whether the
+   path goes on, *next and the weight as scatter_diffuse() leaves them times (cos / pi) over the
+   mixture's density, *d_aim that density over the cosine's and *sq the direction's point of the
+   cosine's square. */
+static inline int scatter_aimed(global const RenderParams* params, const Guide* guide, PathState* p, float3 albedo,
+                                float3 x, float3 n, float4 u, float3* next, float* d_aim, float2* sq,
+                                VertexTally* t)
+{
+    global const OpeningAim* aim = guide->aim;
+    if (aim->triangles == 0u || path_opening(p->flags) != 0u)
+        return -1;
+    float w[FEN_AIM_MAX_TRIS];
+    const float total = aim_weights(aim, x, n, w);
+    if (!(total > 0.0f))
+        return -1;
+    *sq = u.yz;
+    *d_aim = 1.0f;
+    if (!scatter_diffuse(params, p, albedo, n, u, next))
+        return 0;
+    const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_GUIDE);
+    int aimed;
+    float ratio;
+    const float3 v = aim_mixture(aim, x, n, w, total, *next, bits, &aimed, &ratio);
+    if (!(ratio > 0.0f))
+        return 0;
+    p->beta.xyz /= ratio;
+    *next = v;
+    *d_aim = ratio;
+    if (aimed) {
+        *sq = cosine_square_of(n, v);
+        t->guided += 1;
+    }
+    return 1;
+}
+
+/* The diffuse scatter at a path's first diffuse vertex x (slot: its guide slot): by the opening aim
+   when the path is still outside and something can be aimed at, else through a leaf of the guide's
+   table when there is a guide, the weight over its density; with a guide, the record for what the
+   path delivers from here on (lib/guide.h) -- for an aimed direction, its leaf and the density that
+   makes the host's statistic right: the table's d(b) multiplies it there, so the record holds
+   sqrt(d_aim d(b)) and (C g)^2 d(b) is the aim's own (C g_aim)^2 d_aim. Else scatter_diffuse(). */
 static inline int scatter_first(global const RenderParams* params, const Guide* guide,
-                                global const DevCamera* cam, PathState* p, float3 albedo, float3 n,
+                                global const DevCamera* cam, PathState* p, float3 albedo, float3 x, float3 n,
                                 float4 u, uint slot, float3* next, VertexTally* t,
                                 volatile global ulong* counters)
 {
     t->diffuse += 1;
-    if (guide->params->slots == 0u)
-        return scatter_diffuse(params, p, albedo, n, u, next);
+    float d_aim;
+    float2 sq;
+    if (guide->params->slots == 0u) {
+        const int aimed = scatter_aimed(params, guide, p, albedo, x, n, u, next, &d_aim, &sq, t);
+        return aimed >= 0 ? aimed : scatter_diffuse(params, p, albedo, n, u, next);
+    }
     uint key;
     float d = 1.0f;
-    float2 sq = u.yz;
     const uint4 r = guide_record_of(guide, slot);
-    if (r.w & FEN_GUIDE_LEARNED) {
-        sq = guide_draw(params, guide, p, r, &key, &d);
-        t->guided += 1;
-    } else {
-        key = guide_leaf(guide, r, sq);
-    }
     if (guide->params->windows_at)
         guide_arrive(guide, slot, rgb_luminance(p->beta.xyz) * window_units(params, cam), counters);
-    const int alive = scatter_through(params, p, albedo, n, u, sq, d, next);
+    int alive = scatter_aimed(params, guide, p, albedo, x, n, u, next, &d_aim, &sq, t);
+    if (alive >= 0) {
+        key = guide_leaf(guide, r, sq);
+        d = sqrt(d_aim * guide_leaf_density(guide, key));
+    } else {
+        sq = u.yz;
+        if (r.w & FEN_GUIDE_LEARNED) {
+            sq = guide_draw(params, guide, p, r, &key, &d);
+            t->guided += 1;
+        } else {
+            key = guide_leaf(guide, r, sq);
+        }
+        alive = scatter_through(params, p, albedo, n, u, sq, d, next);
+    }
     const float y = rgb_luminance(p->beta.xyz);
     p->org.w = alive && y > 0.0f ? guide->params->stats_scale * cam->up.w / (y * d) : 0.0f;
     p->dir.w = as_float(key);
@@ -139,6 +212,11 @@ static inline int scatter_later(global const RenderParams* params, const Guide* 
                                 float3 albedo, float3 x, float3 n, float4 u, float3* next, VertexTally* t)
 {
     t->diffuse += 1;
+    float d_aim;
+    float2 sq;
+    const int aimed = scatter_aimed(params, guide, p, albedo, x, n, u, next, &d_aim, &sq, t);
+    if (aimed >= 0)
+        return aimed;
     if (guide->params->every_vertex && guide->params->slots) {
         const uint4 r = guide_record_of(guide, guide_slot(guide, x, n));
         if (r.w & FEN_GUIDE_LEARNED) {
@@ -165,7 +243,7 @@ static inline void split_path(PathState* p, SplitState* s, float3 x, float offse
     s->beta = (float4)(p->beta.xyz, as_float(tag));
     s->depth = p->depth;
     s->next = 1u;
-    s->count = k;
+    s->count = k | (p->flags & ~FEN_SPLIT_COUNT_MASK); /* the opening code (FEN_PATH_OPENING_SHIFT) */
     s->path_hi = p->path_hi;
     p->flags |= FEN_PATH_SPLIT | FEN_PATH_WAS_SPLIT;
 }
@@ -223,6 +301,9 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
         } else {
             next = dir;
             p->beta.xyz *= m->transmission.xyz;
+            /* the first glass it passes: the opening it entered by, and its statistics */
+            p->flags = opening_enter(guide->aim, guide->opening_prims, guide->opening_stats, p->flags, prim, dir, ng,
+                                     p->beta.xyz, window_units(params, cam));
         }
     } else {
         /* the side of the surface the light arrived at */
@@ -239,7 +320,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
                 if (value.x > 0.0f || value.y > 0.0f || value.z > 0.0f) {
                     const float3 o = offset_ray_origin(x, offset_m, ng, to_cam);
                     c->org = (float4)(o, as_float(pixel));
-                    c->to_cam = (float4)(cam->position.xyz - o, 0.0f);
+                    c->to_cam = (float4)(cam->position.xyz - o, as_float(path_opening(p->flags))); /* w: its opening */
                     c->value = (float4)(value, p->beta.w); /* the emission cell */
                     /* z: the window statistics' scale, 0 without windows; w: the first vertex's
                        slot and power for them (a record, g > 0, names a leaf of the tables) */
@@ -292,7 +373,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
             }
             if (k >= 2u)
                 split_path(p, s, x, offset_m, n, prim, k, slot, t);
-            alive = scatter_first(params, guide, cam, p, albedo, n, u, slot, &next, t, counters);
+            alive = scatter_first(params, guide, cam, p, albedo, x, n, u, slot, &next, t, counters);
         }
     }
     return leave_vertex(params, p, x, offset_m, ng, next, alive, counters);
@@ -308,8 +389,10 @@ static inline int next_branch(global const RenderParams* params, const Guide* gu
 {
     while (p->flags & FEN_PATH_SPLIT) {
         const uint b = s->next++;
-        if (s->next >= s->count)
+        if (s->next >= (s->count & FEN_SPLIT_COUNT_MASK))
             p->flags &= ~FEN_PATH_SPLIT;
+        /* the opening code it had at the split, not the last branch's */
+        p->flags = (p->flags & FEN_SPLIT_COUNT_MASK) | (s->count & ~FEN_SPLIT_COUNT_MASK);
         p->path_hi = s->path_hi | (b << 24);
         p->depth = s->depth;
         p->beta.xyz = s->beta.xyz;
@@ -321,7 +404,7 @@ static inline int next_branch(global const RenderParams* params, const Guide* gu
         const uint tag = as_uint(s->beta.w);
         const int alive = tag == FEN_SPLIT_LATER
                               ? scatter_later(params, guide, p, albedo, x, n, u, &next, t)
-                              : scatter_first(params, guide, cam, p, albedo, n, u, tag, &next, t, counters);
+                              : scatter_first(params, guide, cam, p, albedo, x, n, u, tag, &next, t, counters);
         if (leave_vertex(params, p, x, s->pos.w, n, next, alive, counters)) {
             p->flags |= FEN_PATH_ALIVE;
             return 1;

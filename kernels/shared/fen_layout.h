@@ -11,6 +11,7 @@
 #include "shared/fen_bvh.h"
 #include "shared/fen_emission.h"
 #include "shared/fen_guide.h"
+#include "shared/fen_openings.h"
 #include "shared/fen_render.h"
 #include "shared/fen_sensor.h"
 #include "shared/fen_sun.h"
@@ -43,6 +44,9 @@
     X(GuideParams, windows_at) \
     X(GuideParams, window_split_max) \
     X(GuideParams, leaf_slots_at) \
+    X(AimTriangle, normal)   \
+    X(OpeningAim, cosine_share) \
+    X(OpeningAim, tri)       \
     X(RenderParams, sun_dir) \
     X(RenderParams, path_end) \
     X(RenderParams, seed)    \

@@ -25,10 +25,11 @@
 #define FEN_PATH_BRANCHED 4u  /* past its first diffuse vertex (where the guide's record is made) */
 #define FEN_PATH_REFLECTED 8u /* reflected by glass: no longer straight from the sky (lib/sensor.h's direct light) */
 #define FEN_PATH_WAS_SPLIT 16u /* split once (at its first diffuse vertex or, by a weight window, later): never again */
-/* Bits from FEN_PATH_PATCH_SHIFT up: the sky patch the path started from, in a daylight-coefficient
+/* Bits FEN_PATH_PATCH_SHIFT to 23: the sky patch the path started from, in a daylight-coefficient
    run (lib/sky_patch.h; set at emission, kept by every later step, which only sets and clears the
-   bits below) */
+   bits below); bits 24..31: the opening it entered by (shared/fen_openings.h) */
 #define FEN_PATH_PATCH_SHIFT 8u
+#define FEN_PATH_PATCH_MASK 0xffffu
 
 /* Counters (fen_u64 each), read back after every iteration. */
 #define FEN_CTR_NEXT_PATH 0        /* next path index to emit (the emit kernel's ticket) */
@@ -124,7 +125,9 @@ typedef struct {
                            (first vertex), or FEN_SPLIT_LATER */
     fen_u32 depth;      /* interactions before the vertex */
     fen_u32 next;       /* the next branch to start */
-    fen_u32 count;      /* branches in all */
+    fen_u32 count;      /* branches in all (bits 0..23, FEN_SPLIT_COUNT_MASK); bits 24..31: the path's
+                           opening code at the split (shared/fen_openings.h), which every branch
+                           starts from */
     fen_u32 path_hi;    /* the path's own path_hi; branch b puts b in its top byte (its random numbers) */
 } SplitState;
 FEN_ASSERT_SIZE(SplitState, 64);
@@ -134,6 +137,7 @@ FEN_ASSERT_SIZE(SplitState, 64);
 /* The most branches one split makes (--split, --adaptive-window-split): a branch's number is the top
    byte of its path_hi, so branch 256 would draw branch 0's random numbers */
 #define FEN_MAX_BRANCHES 255
+#define FEN_SPLIT_COUNT_MASK 0xffffffu
 FEN_ASSERT_OFFSET(SplitState, depth, 48);
 
 typedef struct {

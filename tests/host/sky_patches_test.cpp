@@ -15,6 +15,8 @@
 #include "annual/annual_study.h"
 #include "annual/sky_patches.h"
 #include "io/weather_file.h"
+#include "shared/fen_openings.h"
+#include "shared/fen_render.h"
 #include "sky/cie_sky.h"
 #include "sky/goniogram.h"
 #include "sky/perez_sky.h"
@@ -48,6 +50,15 @@ TEST(SkyPatches, CountsAndSolidAnglesAreReinharts)
     }
     EXPECT_THROW(skyPatchCount(0), Error);
     EXPECT_THROW(skyPatchCount(kMaxSkyPatchMF + 1), Error);
+}
+
+// A path keeps its sky patch in its flags' bits FEN_PATH_PATCH_SHIFT to 23, under the opening
+// code (shared/fen_render.h): the finest subdivision's numbers must fit there.
+TEST(SkyPatches, TheFinestPatchNumberFitsUnderThePathsOpeningCode)
+{
+    EXPECT_LE(skyPatchCount(kMaxSkyPatchMF) - 1, std::size_t{FEN_PATH_PATCH_MASK});
+    EXPECT_EQ(FEN_PATH_PATCH_SHIFT + 16u, FEN_PATH_OPENING_SHIFT);
+    EXPECT_EQ(FEN_PATH_PATCH_MASK, 0xffffu);
 }
 
 TEST(SkyPatches, NumberedAsRadiancesReinhartCal)

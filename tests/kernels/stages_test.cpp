@@ -10,6 +10,7 @@
 
 #include "cl/launch.h"
 #include "scatter/first_bounce_guide.h"
+#include "scatter/opening_aim.h"
 #include "sensor/device_sensors.h"
 #include "io/image.h"
 #include "render/camera_setup.h"
@@ -77,6 +78,9 @@ struct Stages {
         cl::Buffer stats = ctx.buffer(CL_MEM_READ_WRITE, statsZero.size() * 8, "cell stats", statsZero.data());
         cl::Buffer noScale = ctx.buffer(CL_MEM_READ_ONLY, 4, "no pixel scale");
         const FirstBounceGuide noGuide(ctx, GuideOptions::off(), glm::dvec3(0.0), 1.0);  // off: the cosine
+        OpeningAimOptions aimOff;
+        aimOff.enabled = false;
+        const OpeningAim noAim(ctx, aimOff, nullptr);  // nothing aimed at
         const DeviceSensors noSensors(ctx);
         const auto defs = ds.defines();
         auto connectDefs = defs;
@@ -88,11 +92,13 @@ struct Stages {
         ocl::setKernelArgs(isect, paths, hits, n, ds.bvh().nodes(), ds.bvh().packets());
         ocl::setKernelArgs(shade, params, paths, splits, hits, ds.primMaterial(), ds.materials(), ds.primUv(),
                            ds.texels(), camBuf, conns,
-                           noGuide.params(), noGuide.tables(), noGuide.windowStats(), noSensors.info(), noSensors.planes(),
+                           noGuide.params(), noGuide.tables(), noGuide.windowStats(), noAim.aim(), noAim.prims(),
+                           noAim.stats(), noSensors.info(), noSensors.planes(),
                            noSensors.cellTable(), noSensors.bucketStart(), noSensors.bucketCells(),
                            noSensors.accumulators(), stats, noSensors.steer(), counters);
         ocl::setKernelArgs(connect, params, conns, ds.bvh().nodes(), ds.bvh().packets(), ds.primMaterial(),
-                           ds.materials(), accum, stats, noScale, noGuide.stats(), noGuide.windowStats(), counters);
+                           ds.materials(), accum, stats, noScale, noGuide.stats(), noGuide.windowStats(), noAim.stats(),
+                           counters);
         ocl::launch(ctx, isect, "intersect_paths", n);
         ocl::launch(ctx, shade, "shade_paths", n);
         ocl::launch(ctx, connect, "connect_paths", n);

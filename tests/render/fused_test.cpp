@@ -111,6 +111,15 @@ TEST_P(FusedKernel, BitIdenticalToTheWavefront)
         EXPECT_GT(f.emission["guide"].value("learned_slots", 0), 0) << "the guide learned nothing";
         EXPECT_GT(f.counts.guidedVertices, 0u) << "the guide drew nothing";
     }
+    if (c.method == EmissionMethod::Adaptive) {
+        nlohmann::json wa = w.emission["aim"], fa = f.emission["aim"];
+        wa.erase("learn_seconds");
+        fa.erase("learn_seconds");
+        EXPECT_EQ(wa, fa);
+        if (std::string(c.scene) == "courtyard.gltf") {
+            EXPECT_GT(f.emission["aim"].value("aimed_triangles", 0), 0) << "nothing was aimed at";
+        }
+    }
     double sum = 0.0;
     for (float v : f.image.rgb)
         sum += v;
@@ -144,7 +153,11 @@ INSTANTIATE_TEST_SUITE_P(
                            EmissionMethod::Uniform, 3, 1, 1.0, true, false, true, false},
                       // ... and guided at every vertex, the branches of a later split too
                       Case{"adaptive_guide_every_vertex_window", "room.gltf", EmissionMethod::Adaptive,
-                           EmissionMethod::Uniform, 3, 1, 1.0, true, true, true}),
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, true, true},
+                      // the opening aim (on in every adaptive case) where light bounces outside before it
+                      // gets in, with windows splitting: branches start from the split's opening code
+                      Case{"adaptive_aim_courtyard", "courtyard.gltf", EmissionMethod::Adaptive,
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
