@@ -10,7 +10,10 @@ guide could aim there -- not something to ship: the targets are typed in from th
 (scenes/README.md). Unbiased: the cosine share keeps every direction drawable.
 
     python3 scripts/aim_oracle.py --targets courtyard --vertices every --out out/oracle/courtyard
-    FEN_KERNEL_DIR=out/oracle/courtyard build/fenestra render scenes/courtyard.gltf --time 20 ...
+    FEN_KERNEL_DIR=out/oracle/courtyard build/fenestra render scenes/courtyard.gltf --adaptive-aim off --time 20 ...
+
+Render with --adaptive-aim off: the learned opening aim (DESIGN.md §3.5) acts before the oracle's
+edit where it has something to aim at, so with it on the oracle measures the learned aim instead.
 
 --vertices first: only a path's first diffuse vertex (the learned guide's own vertex); every: every
 diffuse vertex in a region; later: every vertex in a region but a path's first, which the learned
@@ -148,14 +151,11 @@ static inline int orc_scatter(global const RenderParams* params, PathState* p, f
 """
 
 # (anchor, replacement) pairs applied to kernels/lib/shade_path.h, each anchor exactly once
-FIRST = """                                volatile global ulong* counters)
-{
-    t->diffuse += 1;
-    if (guide->params->slots == 0u)"""
-FIRST_NEW = """                                volatile global ulong* counters, float3 x)
-{
-    t->diffuse += 1;
-    const int og = ORC_FIRST && guide->params->slots != 0u ? orc_group(x, n) : -1;
+FIRST = """    uint key;
+    float d = 1.0f;
+    const uint4 r = guide_record_of(guide, slot);
+"""
+FIRST_NEW = """    const int og = ORC_FIRST ? orc_group(x, n) : -1;
     if (og >= 0) {
         /* the path's record as an unguided first vertex makes it: the guide keeps learning */
         const uint key = guide_leaf(guide, guide_record_of(guide, slot), u.yz);
@@ -167,23 +167,15 @@ FIRST_NEW = """                                volatile global ulong* counters, 
         p->dir.w = as_float(key);
         return alive;
     }
-    if (guide->params->slots == 0u)"""
-LATER = """{
-    t->diffuse += 1;
-    if (guide->params->every_vertex && guide->params->slots) {"""
-LATER_NEW = """{
-    t->diffuse += 1;
-    if (ORC_EVERY && guide->params->slots != 0u) {
+""" + FIRST
+LATER = """    if (guide->params->every_vertex && guide->params->slots) {"""
+LATER_NEW = """    if (ORC_EVERY && guide->params->slots != 0u) {
         const int og = orc_group(x, n);
         if (og >= 0)
             return orc_scatter(params, p, albedo, n, u, x, og, next, t);
     }
-    if (guide->params->every_vertex && guide->params->slots) {"""
+""" + LATER
 INCLUDE = '#include "lib/texture.h"\n'
-CALLS = [("scatter_first(params, guide, cam, p, albedo, n, u, slot, &next, t, counters);",
-          "scatter_first(params, guide, cam, p, albedo, n, u, slot, &next, t, counters, x);"),
-         ("scatter_first(params, guide, cam, p, albedo, n, u, tag, &next, t, counters);",
-          "scatter_first(params, guide, cam, p, albedo, n, u, tag, &next, t, counters, x);")]
 HELPERS_BEFORE = "/* The diffuse scatter at a path's first diffuse vertex"
 
 
@@ -224,7 +216,7 @@ def main():
     path = os.path.join(a.out, "lib", "shade_path.h")
     src = open(path).read()
     edits = [(INCLUDE, INCLUDE + "#define ORC_EVERY %d\n#define ORC_FIRST %d\n" % (a.vertices != "first", a.vertices != "later")),
-             (FIRST, FIRST_NEW), (LATER, LATER_NEW)] + CALLS
+             (FIRST, FIRST_NEW), (LATER, LATER_NEW)]
     # the oracle's functions need scatter_diffuse(), so they go after it, before scatter_first()
     edits.append((HELPERS_BEFORE, header + "\n" + HELPERS_BEFORE))
     for old, new in edits:
