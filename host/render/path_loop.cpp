@@ -104,11 +104,8 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     if (!guide)
         guide = (noGuide_ = std::make_unique<FirstBounceGuide>(ctx, GuideOptions::off(), glm::dvec3(0.0), 1.0)).get();
     const OpeningAim* aim = ek.aim;
-    if (!aim) {
-        OpeningAimOptions off;
-        off.enabled = false;
-        aim = (noAim_ = std::make_unique<OpeningAim>(ctx, off, nullptr)).get();
-    }
+    if (!aim)
+        aim = (noAim_ = std::make_unique<OpeningAim>(ctx, OpeningAimOptions::off(), nullptr)).get();
     strategy.bindEmitArgs(emit_, 3);  // checks the arity: the strategy's arguments are the last
     if (mode == KernelMode::Fused) {
         cl_uint a = 0;

@@ -10,7 +10,6 @@
 
 #include "io/state_io.h"
 #include "scene/scene.h"
-#include "shared/fen_guide.h"
 #include "util/error.h"
 #include "util/fixed_point.h"
 
@@ -114,12 +113,22 @@ OpeningAim::OpeningAim(ocl::Context& ctx, const OpeningAimOptions& o, const Scen
     std::vector<std::array<std::uint32_t, 2>> pairs;  // (primitive, 2 j + flipped), sorted by primitive
     for (std::size_t j = 0; j < openings_.size(); ++j) {
         const Opening& op = openings_[j];
+        firstTriangle_.push_back(triangles_.size());
         for (std::size_t k = 0; k < op.triangles.size(); ++k) {
             pairs.push_back({op.triangles[k], static_cast<std::uint32_t>(2 * j) + static_cast<std::uint32_t>(op.flipped[k])});
             const Triangle& t = scene->triangles[op.triangles[k]];
-            corners_.insert(corners_.end(), {t.p0, t.p1, t.p2});
+            const glm::vec3 e1 = t.p1 - t.p0, e2 = t.p2 - t.p0;
+            const glm::dvec3 cr = glm::cross(glm::dvec3(e1), glm::dvec3(e2));  // of the float edges the device gets
+            const glm::vec3 nt = glm::vec3(glm::normalize(cr));
+            dev::AimTriangle a{};
+            a.p0 = {t.p0.x, t.p0.y, t.p0.z, static_cast<float>(0.5 * glm::length(cr))};
+            a.e1 = {e1.x, e1.y, e1.z, 0.0f};
+            a.e2 = {e2.x, e2.y, e2.z, 0.0f};
+            a.normal = {nt.x, nt.y, nt.z, 0.0f};
+            triangles_.push_back(a);
         }
     }
+    firstTriangle_.push_back(triangles_.size());
     std::sort(pairs.begin(), pairs.end());
     totals_.assign(openings_.size(), {});
     weight_.assign(openings_.size(), {0.0, 0.0});
@@ -129,16 +138,19 @@ OpeningAim::OpeningAim(ocl::Context& ctx, const OpeningAimOptions& o, const Scen
     if (pairs.empty())
         pairs.push_back({0u, 0u});  // a placeholder: prims = 0, never read
     prims_ = ctx_.buffer(CL_MEM_READ_ONLY, pairs.size() * 8, "opening primitives", pairs.data());
-    const std::size_t statWords = std::max<std::size_t>(2 * openings_.size(), 1) * FEN_OPENING_STATS_WORDS;
-    stats_ = ctx_.buffer(CL_MEM_READ_WRITE, statWords * 8, "opening statistics");
-    deviceBytes_ = sizeof(dev::OpeningAim) + pairs.size() * 8 + statWords * 8;
+    stats_ = ctx_.buffer(CL_MEM_READ_WRITE, statWords() * 8, "opening statistics");
+    deviceBytes_ = sizeof(dev::OpeningAim) + pairs.size() * 8 + statWords() * 8;
     clearStats();
+}
+
+std::size_t OpeningAim::statWords() const
+{
+    return std::max<std::size_t>(2 * openings_.size(), 1) * FEN_OPENING_STATS_WORDS;
 }
 
 void OpeningAim::clearStats()
 {
-    ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0,
-                                   std::max<std::size_t>(2 * openings_.size(), 1) * FEN_OPENING_STATS_WORDS * 8);
+    ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, statWords() * 8);
 }
 
 void OpeningAim::learn()
@@ -193,10 +205,6 @@ void OpeningAim::rebuild()
     std::vector<std::size_t> order(n);
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rank[a] > rank[b]; });
-    // where each opening's corners start in corners_
-    std::vector<std::size_t> firstCorner(n + 1, 0);
-    for (std::size_t j = 0; j < n; ++j)
-        firstCorner[j + 1] = firstCorner[j] + 3 * openings_[j].triangles.size();
     std::uint32_t count = 0;
     aimedOpenings_ = skippedOpenings_ = 0;
     for (std::size_t j : order) {
@@ -209,17 +217,12 @@ void OpeningAim::rebuild()
         }
         ++aimedOpenings_;
         for (std::size_t k = 0; k < op.triangles.size(); ++k) {
-            const glm::vec3* c = corners_.data() + firstCorner[j] + 3 * k;
-            const glm::vec3 e1 = c[1] - c[0], e2 = c[2] - c[0];
-            const glm::dvec3 cr = glm::cross(glm::dvec3(e1), glm::dvec3(e2));
-            const glm::vec3 nt = glm::vec3(glm::normalize(cr));
             // the triangle's front (where its own normal points) is the pane's side 0 unless flipped
             const std::size_t front = op.flipped[k] ? 1 : 0;
             dev::AimTriangle& t = host_.tri[count++];
-            t.p0 = {c[0].x, c[0].y, c[0].z, static_cast<float>(0.5 * glm::length(cr))};
-            t.e1 = {e1.x, e1.y, e1.z, static_cast<float>(weight_[j][front])};
-            t.e2 = {e2.x, e2.y, e2.z, static_cast<float>(weight_[j][1 - front])};
-            t.normal = {nt.x, nt.y, nt.z, 0.0f};
+            t = triangles_[firstTriangle_[j] + k];
+            t.e1.w = static_cast<float>(weight_[j][front]);
+            t.e2.w = static_cast<float>(weight_[j][1 - front]);
         }
     }
     host_.triangles = count;

@@ -53,6 +53,13 @@ struct OpeningAimOptions {
     // The aim weighs a side by its learned ratio to this power (relative to the largest): 1 the
     // mean itself; below 1 spreads the aim over the openings whose ratio is smaller.
     double power = 1.0;
+    // No aim: placeholders bound where a strategy has none (nothing aimed at, nothing learned).
+    static OpeningAimOptions off()
+    {
+        OpeningAimOptions o;
+        o.enabled = false;
+        return o;
+    }
 };
 // Throws a one-line error naming the option for a value out of range.
 void validateOpeningAimOptions(const OpeningAimOptions& o);
@@ -100,11 +107,15 @@ private:
     };
     void rebuild();
     void upload();
+    std::size_t statWords() const;  // the statistics buffer's words (one side's worth when empty)
     ocl::Context& ctx_;
     OpeningAimOptions opt_;
     std::vector<Opening> openings_;                       // learned ones: at most FEN_OPENING_MAX
     std::size_t ignoredOpenings_ = 0;                     // beyond FEN_OPENING_MAX, never learned
-    std::vector<glm::vec3> corners_;                      // per learned opening's triangle, 3 each
+    // The learned openings' triangles as the device takes them, weights 0 (rebuild() sets them),
+    // opening j's from firstTriangle_[j] on
+    std::vector<dev::AimTriangle> triangles_;
+    std::vector<std::size_t> firstTriangle_;
     std::vector<std::array<SideTotals, 2>> totals_;       // per opening, per side
     std::vector<std::array<double, 2>> weight_;
     std::size_t aimedOpenings_ = 0, skippedOpenings_ = 0;  // skipped: no room left in the aim

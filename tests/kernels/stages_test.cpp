@@ -78,9 +78,7 @@ struct Stages {
         cl::Buffer stats = ctx.buffer(CL_MEM_READ_WRITE, statsZero.size() * 8, "cell stats", statsZero.data());
         cl::Buffer noScale = ctx.buffer(CL_MEM_READ_ONLY, 4, "no pixel scale");
         const FirstBounceGuide noGuide(ctx, GuideOptions::off(), glm::dvec3(0.0), 1.0);  // off: the cosine
-        OpeningAimOptions aimOff;
-        aimOff.enabled = false;
-        const OpeningAim noAim(ctx, aimOff, nullptr);  // nothing aimed at
+        const OpeningAim noAim(ctx, OpeningAimOptions::off(), nullptr);  // nothing aimed at
         const DeviceSensors noSensors(ctx);
         const auto defs = ds.defines();
         auto connectDefs = defs;
