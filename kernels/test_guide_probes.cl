@@ -60,3 +60,15 @@ kernel void guide_arrive_probe(global const GuideParams* guide_params, volatile 
         guide_arrive(&g, slot[i * per + k], a[i * per + k], counters);
     guide_arrivals_flush(&g);
 }
+
+/* Camera contributions recorded (lib/guide.h guide_record): contribution i of luminance y[i], made
+   by a path whose record names leaf key[i] (g = 1), window word window[i] (slot | flags) and
+   connection word opening[i] (lib/opening_aim.h), at the window statistics' scale `scale`. */
+kernel void guide_record_probe(volatile global ulong* guide_stats, volatile global ulong* window_stats,
+                               global const uint* key, global const float* y, global const uint* window,
+                               global const uint* opening, float scale, uint count, volatile global ulong* counters)
+{
+    const uint i = get_global_id(0);
+    if (i < count)
+        guide_record(guide_stats, window_stats, 1.0f, key[i], y[i], scale, window[i], opening[i], counters);
+}

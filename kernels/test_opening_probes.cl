@@ -23,8 +23,8 @@ kernel void aim_mixture_probe(global const OpeningAim* aim, float4 x, float4 n, 
     const float3 cosine = sample_cosine_hemisphere(n.xyz, u.y, u.z);
     int aimed;
     float ratio;
-    const float3 v = aim_mixture(aim, x.xyz, n.xyz, w, total, cosine, rng_bits(seed, 0u, i, 0u, 0u, FEN_RNG_GUIDE),
-                                 &aimed, &ratio);
+    const float3 v = aim_mixture(aim, x.xyz, n.xyz, w, total, aim->cosine_share, cosine,
+                                 rng_bits(seed, 0u, i, 0u, 0u, FEN_RNG_GUIDE), &aimed, &ratio);
     out[i] = (float4)(v, ratio);
 }
 

@@ -87,7 +87,11 @@ public:
         render.add_option("--adaptive-aim", aim_,
                           "With adaptive: aim the bounces outside at the glass that leads to the camera, learned, on or off (default on)");
         render.add_option("--adaptive-aim-share", aimShare_,
-                          "With adaptive --adaptive-aim on: the cosine's share at an aimed vertex, (0, 1) (default 0.75)");
+                          "With adaptive --adaptive-aim on: the cosine's share at an aimed vertex, a number in (0, 1) (default 0.75), or learned: at a path's first diffuse vertex, from what the paths deliver (0.75 past it; needs weight windows)");
+        render.add_option("--adaptive-aim-share-min", aimShareMin_,
+                          "With adaptive --adaptive-aim-share learned: the least share it learns, (0, 1) (default 0.25)");
+        render.add_option("--adaptive-aim-share-max", aimShareMax_,
+                          "With adaptive --adaptive-aim-share learned: the most share it learns, [min, 1] (default 0.95)");
         render.add_option("--adaptive-aim-power", aimPower_,
                           "With adaptive --adaptive-aim on: weigh each opening by its learned worth to this power, (0, 2] (default 1)");
         render.add_option("--adaptive-guide-memory", guideMemory_,
@@ -113,7 +117,7 @@ public:
                            target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_ || guideMinGain_ ||
                            guideMinContributions_ ||
                            guideVertices_ || window_ || windowSplit_ || windowSurvival_ || windowVertices_ || windowLater_ || aim_ ||
-                           aimShare_ || aimPower_;
+                           aimShare_ || aimPower_ || aimShareMin_ || aimShareMax_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
@@ -176,20 +180,47 @@ public:
             throw Error("--adaptive-window: needs --adaptive-guide on (the windows are learned with the guide)");
         if (aim_)
             a.aim.enabled = choice("--adaptive-aim", *aim_, "on", "off");
-        if ((aimShare_ || aimPower_) && !a.aim.enabled)
-            throw Error(cat(aimShare_ ? "--adaptive-aim-share" : "--adaptive-aim-power",
+        if ((aimShare_ || aimPower_ || aimShareMin_ || aimShareMax_) && !a.aim.enabled)
+            throw Error(cat(aimShare_ ? "--adaptive-aim-share"
+                                      : (aimPower_ ? "--adaptive-aim-power"
+                                                   : (aimShareMin_ ? "--adaptive-aim-share-min" : "--adaptive-aim-share-max")),
                             ": applies with the opening aim, which --adaptive-aim off turns off"));
-        a.aim.cosineShare = aimShare_.value_or(a.aim.cosineShare);
+        if (aimShare_ && *aimShare_ == "learned") {
+            a.aim.learnShare = true;
+        } else if (aimShare_) {
+            std::size_t used = 0;
+            double v = 0.0;
+            try {
+                v = std::stod(*aimShare_, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used == 0 || used != aimShare_->size())
+                throw Error(cat("--adaptive-aim-share '", printable(*aimShare_, 40), "': expected learned or a number in (0, 1)"));
+            a.aim.learnShare = false;
+            a.aim.cosineShare = v;
+        }
+        if ((aimShareMin_ || aimShareMax_) && !a.aim.learnShare)
+            throw Error(cat(aimShareMin_ ? "--adaptive-aim-share-min" : "--adaptive-aim-share-max",
+                            ": applies with --adaptive-aim-share learned (the share is fixed otherwise)"));
+        if ((aimShareMin_ || aimShareMax_ || (aimShare_ && a.aim.learnShare)) && !a.guide.window)
+            throw Error(cat(aimShareMin_ ? "--adaptive-aim-share-min"
+                                         : (aimShareMax_ ? "--adaptive-aim-share-max" : "--adaptive-aim-share learned"),
+                            ": the share is learned from the weight windows' sums, which ",
+                            window_ ? "--adaptive-window off" : "--adaptive-guide off", " turns off"));
+        a.aim.shareMin = aimShareMin_.value_or(a.aim.shareMin);
+        a.aim.shareMax = aimShareMax_.value_or(a.aim.shareMax);
         a.aim.power = aimPower_.value_or(a.aim.power);
         validateAdaptiveOptions(a);
     }
 
 private:
-    std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_, window_, windowVertices_, aim_;
+    std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_, window_, windowVertices_, aim_,
+        aimShare_;
     std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_, windowSplit_;
     std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_,
         guideMinGain_, guideMinContributions_,
-        windowSurvival_, windowLater_, aimShare_, aimPower_;
+        windowSurvival_, windowLater_, aimPower_, aimShareMin_, aimShareMax_;
     std::optional<std::uint64_t> firstPass_;
     std::optional<std::uint32_t> maxCells_;
 };

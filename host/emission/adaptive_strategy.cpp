@@ -168,9 +168,15 @@ public:
         });
 
         createBuffers(scene);
-        guide_ = std::make_unique<FirstBounceGuide>(ctx_, opt_.guide, centre_, radius_m_);
+        // the aim learns its share from sums the guide keeps per slot, beside the weight windows'
+        // (the options refuse --adaptive-aim-share learned without windows)
+        GuideOptions guideOptions = opt_.guide;
+        OpeningAimOptions aimOptions = opt_.aim;
+        aimOptions.learnShare = aimOptions.enabled && aimOptions.learnShare && guideOptions.enabled && guideOptions.window;
+        guideOptions.aimSums = aimOptions.learnShare;
+        guide_ = std::make_unique<FirstBounceGuide>(ctx_, guideOptions, centre_, radius_m_);
         deviceBytes_ += guide_->deviceBytes();
-        aim_ = std::make_unique<OpeningAim>(ctx_, opt_.aim, &scene);
+        aim_ = std::make_unique<OpeningAim>(ctx_, aimOptions, &scene);
         deviceBytes_ += aim_->deviceBytes();
         if (opt_.relativeTarget) {
             filmWidth_ = in.filmWidth;
@@ -539,6 +545,8 @@ private:
         q.enqueueFillBuffer(stats_, cl_ulong(0), 0, FEN_CELL_PARTS * grid_->cells().size() * FEN_CELL_STATS_WORDS * 8);
         upload();
         guide_->learn();
+        const FirstBounceGuide::AimSums sums = guide_->passAimSums();
+        aim_->learnShare(sums.mixed, sums.aimed);
         aim_->learn();
     }
 

@@ -32,7 +32,7 @@ constexpr double kBytesPerLeaf = 8.0 * FEN_GUIDE_STATS_WORDS + 8.0 + 16.0 + 16.0
 constexpr double kMiB = 1024.0 * 1024.0;
 constexpr std::size_t kSavedPerLeaf = 2;  // a leaf's totals in a checkpoint: Leaf::totals()
 constexpr std::size_t kSavedPerWindow = 3;  // a slot's window totals in a checkpoint: WindowTotals::totals()
-// Device bytes per slot with weight windows: its statistics and its window word.
+// Device bytes per slot with weight windows: its statistics (with the aim's sums) and its window word.
 constexpr double kWindowBytesPerSlot = 8.0 * FEN_GUIDE_WINDOW_WORDS + 4.0;
 
 // Voxels along each side of the lattice cube (side 2R): the power of 2 at or above 2 voxelsAcross.
@@ -197,6 +197,7 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
         deviceParams_.window_power = opt_.windowRule == GuideOptions::WindowRule::Moment ? 2u : 1u;
         deviceParams_.leaf_slots_at = static_cast<std::uint32_t>(deviceParams_.windows_at + slotCapacity_);
         deviceParams_.window_later = opt_.windowEveryVertex ? static_cast<float>(opt_.windowLater) : 0.0f;
+        deviceParams_.aim_sums = opt_.aimSums ? 1u : 0u;
     }
     // with weight windows: a word per slot (its window) and per leaf (its slot)
     const std::size_t windowWords = deviceParams_.windows_at ? slotCapacity_ + leafCapacity_ : 0;
@@ -217,8 +218,9 @@ FirstBounceGuide::FirstBounceGuide(ocl::Context& ctx, const GuideOptions& o, glm
 static_assert(FEN_GUIDE_SUMSQ_LO == 0 && FEN_GUIDE_CONNECTIONS == 2 && FEN_GUIDE_STATS_WORDS == 3,
               "a leaf's statistics as summed() describes them: a 128-bit sum and a count");
 static_assert(FEN_GUIDE_DELIVERED_LO == 0 && FEN_GUIDE_ARRIVED_LO == 2 && FEN_GUIDE_VISITS == 4 &&
-                  FEN_GUIDE_WINDOW_WORDS == 5,
-              "a slot's window statistics as windowSummed() describes them: two 128-bit sums and a count");
+                  FEN_GUIDE_MIXED_SQ_LO == 5 && FEN_GUIDE_AIMED_SQ_LO == 7 && FEN_GUIDE_WINDOW_WORDS == 9,
+              "a slot's window statistics as windowSummed() describes them: two 128-bit sums, a count and two "
+              "128-bit sums");
 
 void FirstBounceGuide::clearStats()
 {
@@ -634,6 +636,7 @@ void FirstBounceGuide::learn()
     pass.sumSq.resize(leafCount_);  // every element is written below
     pass.connections.resize(leafCount_);
     std::vector<double> passConnections(trees_.size(), 0.0);
+    slotAimSums_.assign(deviceParams_.aim_sums ? trees_.size() : 0, AimSums{});
     // Slot by slot, each writing only its own leaves and sums: the slots in shares over the threads.
     inShares(trees_.size(), [&](std::size_t s0, std::size_t s1) {
         for (std::size_t s = s0; s < s1; ++s) {
@@ -655,9 +658,16 @@ void FirstBounceGuide::learn()
                 t.window.delivered += fixed128(ww + FEN_GUIDE_DELIVERED_LO);
                 t.window.arrived += fixed128(ww + FEN_GUIDE_ARRIVED_LO);
                 t.window.visits += static_cast<double>(ww[FEN_GUIDE_VISITS]);
+                if (deviceParams_.aim_sums)
+                    slotAimSums_[s] = {fixed128(ww + FEN_GUIDE_MIXED_SQ_LO), fixed128(ww + FEN_GUIDE_AIMED_SQ_LO)};
             }
         }
     }, 64);
+    passAimSums_ = AimSums{};
+    for (const AimSums& a : slotAimSums_) {
+        passAimSums_.mixed += a.mixed;
+        passAimSums_.aimed += a.aimed;
+    }
     lastSplits_ = refine(pass);  // keeps leafCount_
     lastSpatialSplits_ = refineSpace(passConnections);
     rebuild();

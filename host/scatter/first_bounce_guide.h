@@ -129,6 +129,10 @@ struct GuideOptions {
     // "Lower windows past the first vertex").
     double windowLater = 4.0;
     double windowMinVisits = 256.0;
+    // With weight windows, also sum the opening aim's share statistics (fen_guide.h
+    // FEN_GUIDE_MIXED_SQ_LO) in each slot's window sums, for the aim to learn its share from
+    // (passAimSums(); set by the strategy, which owns the aim).
+    bool aimSums = false;
     // No guide: placeholders bound where a strategy has none (GuideParams.slots = 0).
     static GuideOptions off()
     {
@@ -153,7 +157,15 @@ public:
     // The statistics as a team sums them (team/shared_sums.h): per leaf, a 128-bit sum and a count;
     // and the weight windows' per slot, two 128-bit sums and a count (none without windows).
     SummedBuffer summed() const { return {&stats_, opt_.enabled ? leafCount_ : 0, {2, 1}}; }
-    SummedBuffer windowSummed() const { return {&windowStats_, deviceParams_.windows_at ? trees_.size() : 0, {2, 2, 1}}; }
+    SummedBuffer windowSummed() const { return {&windowStats_, deviceParams_.windows_at ? trees_.size() : 0, {2, 2, 1, 2, 2}}; }
+    // The opening aim's share statistics of the pass learn() last read, over every slot (with
+    // aimSums; else zeros): the squares of what paths that left a first vertex by the aim's mixture
+    // delivered (mixed), and of those that left in the aim's region (aimed), at the window
+    // statistics' scale squared.
+    struct AimSums {
+        double mixed = 0.0, aimed = 0.0;
+    };
+    AimSums passAimSums() const { return passAimSums_; }
     std::size_t deviceBytes() const { return deviceBytes_; }
 
     // After a pass: statistics into the totals, trees refined, new tables up, statistics cleared.
@@ -260,6 +272,8 @@ private:
     std::vector<std::uint32_t> records_, spatialWords_, nodeWords_, leafWords_, columnWords_, windowWords_,
         leafSlotWords_;
     std::size_t windowSlots_ = 0;  // slots with a window, after rebuild()
+    AimSums passAimSums_;
+    std::vector<AimSums> slotAimSums_;  // learn()'s per slot, summed in slot order (deterministic)
     double windowTarget_ = 0.0;    // T, in units of the delivered statistic, after rebuild()
     std::uint32_t learnedSlots_ = 0, candidateSlots_ = 0, maxDepthSeen_ = 0;
     double learnSeconds_ = 0.0, lastLearnSeconds_ = 0.0;

@@ -24,6 +24,11 @@ void validateOpeningAimOptions(const OpeningAimOptions& o)
         throw Error(cat("--adaptive-aim-min-entries ", o.minEntries, ": must be in 1..10^12"));
     if (!(o.minShare >= 0.0 && o.minShare < 1.0))
         throw Error(cat("--adaptive-aim-min-share ", o.minShare, ": must be in [0, 1)"));
+    if (!(o.shareMin > 0.0 && o.shareMin < 1.0))
+        throw Error(cat("--adaptive-aim-share-min ", o.shareMin, ": must be in (0, 1)"));
+    if (!(o.shareMax >= o.shareMin && o.shareMax <= 1.0))
+        throw Error(cat("--adaptive-aim-share-max ", o.shareMax, ": must be in [", o.shareMin,
+                        ", 1] (not below --adaptive-aim-share-min)"));
     if (!(o.power > 0.0 && o.power <= 2.0))
         throw Error(cat("--adaptive-aim-power ", o.power, ": must be in (0, 2]"));
 }
@@ -133,7 +138,7 @@ OpeningAim::OpeningAim(ocl::Context& ctx, const OpeningAimOptions& o, const Scen
     totals_.assign(openings_.size(), {});
     weight_.assign(openings_.size(), {0.0, 0.0});
     host_.prims = static_cast<std::uint32_t>(pairs.size());
-    host_.cosine_share = static_cast<float>(opt_.cosineShare);
+    host_.cosine_share = host_.first_share = static_cast<float>(opt_.cosineShare);
     aim_ = ctx_.buffer(CL_MEM_READ_ONLY, sizeof(dev::OpeningAim), "opening aim", &host_);
     if (pairs.empty())
         pairs.push_back({0u, 0u});  // a placeholder: prims = 0, never read
@@ -151,6 +156,31 @@ std::size_t OpeningAim::statWords() const
 void OpeningAim::clearStats()
 {
     ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, statWords() * 8);
+}
+
+// One first vertex's scatter is one sample of s cos + (1 - s) aim. Where the aim's part of the
+// density is the larger (its region) the density is about (1 - s) the aim's, elsewhere about s the
+// cosine's, so a pass's second moments of what paths leaving in the two regions deliver are about
+// A / (1 - s) and B / s, A and B their moments under the aim and the cosine alone: each pass's sums
+// times the share that drew them estimate A and B. A / (1 - s) + B / s is least at
+// s = sqrt(B) / (sqrt(A) + sqrt(B)). The contributions are summed one by one, not per path, as the
+// weight windows' moments are: each lands in its own pixel.
+void OpeningAim::learnShare(double mixed, double aimed)
+{
+    if (!opt_.enabled || !opt_.learnShare || !(mixed > 0.0))
+        return;
+    const double s = host_.first_share;
+    shareA_ += std::min(aimed, mixed) * (1.0 - s);
+    shareB_ += std::max(mixed - aimed, 0.0) * s;
+    setShare();
+}
+
+void OpeningAim::setShare()
+{
+    if (!(shareA_ + shareB_ > 0.0))
+        return;
+    const double a = std::sqrt(shareA_), b = std::sqrt(shareB_);
+    host_.first_share = static_cast<float>(std::clamp(b / (a + b), opt_.shareMin, opt_.shareMax));
 }
 
 void OpeningAim::learn()
@@ -241,6 +271,7 @@ void OpeningAim::save(StateWriter& w) const
             v.insert(v.end(), {t.delivered, t.entered, t.entries});
     w.f64s("aim.totals", v);
     w.u64("aim.passes", static_cast<std::uint64_t>(passes_));
+    w.f64s("aim.share", {shareA_, shareB_});
 }
 
 void OpeningAim::load(StateReader& r)
@@ -257,6 +288,14 @@ void OpeningAim::load(StateReader& r)
                 r.fail("aim.totals", "a negative total");
         }
     passes_ = static_cast<int>(r.u64("aim.passes", 1u << 30));
+    const std::vector<double> share = r.f64s("aim.share", 2, true);
+    shareA_ = r.finite("aim.share", share[0]);
+    shareB_ = r.finite("aim.share", share[1]);
+    if (shareA_ < 0.0 || shareB_ < 0.0)
+        r.fail("aim.share", "a negative second moment");
+    host_.first_share = static_cast<float>(opt_.cosineShare);
+    if (opt_.learnShare)
+        setShare();
     clearStats();
     rebuild();
     upload();
@@ -279,7 +318,10 @@ nlohmann::json OpeningAim::report() const
         }
     }
     return {{"enabled", opt_.enabled},
-            {"cosine_share", opt_.cosineShare},
+            {"cosine_share", host_.cosine_share},
+            {"first_share", host_.first_share},
+            {"share_learned", opt_.learnShare},
+            {"share_moments", {shareA_, shareB_}},
             {"power", opt_.power},
             {"openings", openings_.size()},
             {"openings_not_learned", ignoredOpenings_},

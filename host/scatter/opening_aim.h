@@ -13,7 +13,8 @@
 // subtends (one sample of a mixture with the cosine, unbiased). Told where the openings are, such
 // an aim at every vertex outside made the courtyard 2.7x and the snow house 3.7x as efficient as
 // the learned tables; learned, it made them 1.9x and 1.6x, the house 1.1x (docs/results/guiding.md,
-// "Told where the openings are", "The opening aim").
+// "Told where the openings are", "The opening aim"). The mixture's cosine share is learned too
+// (learnShare(), from sums the guide keeps beside the weight windows'), one for the scene.
 //
 // Deterministic: the statistics are integer sums and the choices ordered, so the aim after a pass
 // depends only on the seed and the path counts. Off (enabled = false, or no glass): the device's
@@ -41,11 +42,24 @@ struct OpeningAimOptions {
     // On by default: at equal time it made adaptive 1.9x as efficient on the courtyard, 1.6x under
     // snow and 1.1x on the house (docs/results/guiding.md, "The opening aim").
     bool enabled = true;
-    // The cosine's share of the mixture at an aimed vertex. A path's weight grows by up to 1/share
-    // at a vertex whose cosine draw misses the panes, and over several bounces outside those
-    // paths became the houses' fireflies at 0.5 (snow house 0.67-2.97x in three seeds); 0.75 held
-    // 1.6x there and 1.1x on the house, where 0.5 won only the courtyard (2.4x against 1.9x).
+    // The cosine's share of the mixture at an aimed vertex (with learnShare: past a path's first
+    // diffuse vertex, and where the first vertex's starts). A path's weight grows by up to 1/share
+    // at a vertex whose cosine draw misses the panes, and over several bounces outside those paths
+    // became the houses' fireflies at 0.5 (snow house 0.67-2.97x in three seeds); 0.75 held 1.6x
+    // there and 1.1x on the house, where 0.5 won only the courtyard (2.4x against 1.9x).
     double cosineShare = 0.75;
+    // Learn the share at a path's first diffuse vertex from what the paths deliver (learnShare()):
+    // after each pass, the share that minimises the second moment A / (1 - s) + B / s of that
+    // vertex's scatter, A of what leaves where the aim's density dominates, were it drawn by the
+    // aim alone, B of the rest, were it drawn by the cosine alone -- s = sqrt(B) / (sqrt(A) +
+    // sqrt(B)) -- within [shareMin, shareMax], one for the scene. Off by default: it made the
+    // courtyard about 1.4x as efficient and left the houses at 0.9-1.0x over five seeds, the snow
+    // house's median under 0.95 (docs/results/guiding.md, "The aim's share, learned"). Learned per
+    // place (the guide's slots), rare heavy paths left most places' B too low and the houses lost
+    // more; used at every vertex, the share a first vertex wants was too low for the later ones.
+    bool learnShare = false;
+    double shareMin = 0.25;
+    double shareMax = 0.95;
     // An opening side is aimed at once this many paths have entered by it ...
     double minEntries = 64.0;
     // ... and while its weight times its area is at least this share of the largest's.
@@ -86,8 +100,13 @@ public:
     SummedBuffer summed() const { return {&stats_, 2 * openings_.size(), {2, 2, 1}}; }
     std::size_t deviceBytes() const { return deviceBytes_; }
 
+    // After a pass, before learn(): the pass's squares of what paths that left a first vertex by the
+    // mixture delivered (mixed) and of those that left in the aim's region (aimed), any common
+    // scale; with learnShare, the share for the next pass (uploaded by learn()).
+    void learnShare(double mixed, double aimed);
     // After a pass: statistics into the totals, the aim rebuilt and uploaded, statistics cleared.
     void learn();
+    double firstShare() const { return host_.first_share; }  // at a path's first diffuse vertex
     void clearStats();
 
     const std::vector<Opening>& openings() const { return openings_; }
@@ -123,6 +142,9 @@ private:
     std::vector<std::uint64_t> raw_;
     double learnSeconds_ = 0.0;
     int passes_ = 0;
+    // learnShare(): the estimates of A and B (the share's second moments), and the share they give
+    double shareA_ = 0.0, shareB_ = 0.0;
+    void setShare();
     cl::Buffer aim_, prims_, stats_;
     std::size_t deviceBytes_ = 0;
 };

@@ -40,7 +40,7 @@ static inline void connect_path(global const RenderParams* params, const Connect
         const float3 value = c->value.xyz * trans;
         if (c->guide.x > 0.0f)
             guide_record(guide_stats, window_stats, c->guide.x, as_uint(c->guide.y), rgb_luminance(value),
-                         c->guide.z, as_uint(c->guide.w), counters);
+                         c->guide.z, as_uint(c->guide.w), as_uint(c->to_cam.w), counters);
         opening_deliver(opening_stats, as_uint(c->to_cam.w), rgb_luminance(value),
                         params->fixed_scale * FEN_GUIDE_WINDOW_SCALE);
 #ifdef FEN_EMISSION_STATS

@@ -153,15 +153,18 @@ static inline float2 guide_sample(const Guide* g, uint4 r, RngBlock bits, uint* 
    g, key), to that leaf's statistics: (y g)^2, g already holding the fixed-point scale; and with
    weight windows (delivered_scale > 0: the window statistics' scale) y at that scale, or its square
    (window & FEN_GUIDE_WINDOW_SQUARED), to the window statistics of the vertex's slot (the rest of
-   window), for the adjoint the windows follow. */
+   window), for the adjoint the windows follow; with the aim's share statistics
+   (window & FEN_GUIDE_WINDOW_AIM), where the vertex drew from the aim's mixture, the square of y
+   at that scale to the slot's mixed sum, and where it drew a direction in the aim's region to its
+   aimed sum too (`opening`: the connection's word, lib/opening_aim.h). */
 static inline void guide_record(volatile global ulong* guide_stats, volatile global ulong* window_stats, float g,
-                                uint key, float y, float delivered_scale, uint window,
+                                uint key, float y, float delivered_scale, uint window, uint opening,
                                 volatile global ulong* counters)
 {
     volatile global ulong* s = guide_stats + FEN_GUIDE_STATS_WORDS * (ulong)key;
     const float v = y * g;
     volatile global ulong* w =
-        window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)(window & ~FEN_GUIDE_WINDOW_SQUARED);
+        window_stats + FEN_GUIDE_WINDOW_WORDS * (ulong)(window & FEN_GUIDE_WINDOW_SLOT);
     const float c = y * delivered_scale;
     if (!fixed_add128(s + FEN_GUIDE_SUMSQ_LO, v * v) ||
         (delivered_scale > 0.0f &&
@@ -170,6 +173,11 @@ static inline void guide_record(volatile global ulong* guide_stats, volatile glo
         return;
     }
     atom_inc(s + FEN_GUIDE_CONNECTIONS);
+    if (delivered_scale > 0.0f && (window & FEN_GUIDE_WINDOW_AIM) && (opening & FEN_OPENING_CONNECTION_MIXED)) {
+        if (!fixed_add128(w + FEN_GUIDE_MIXED_SQ_LO, c * c) ||
+            ((opening & FEN_OPENING_CONNECTION_AIM_REGION) && !fixed_add128(w + FEN_GUIDE_AIMED_SQ_LO, c * c)))
+            counter_add(counters, FEN_CTR_STATS_OVERFLOWS, 1);
+    }
 }
 
 /* Weight windows (DESIGN.md §3.4): the window weight of a slot -- the luminance of weight over A_pix
@@ -185,7 +193,8 @@ static inline float guide_window(const Guide* g, uint slot)
    diffuse vertex left through leaf key: the leaf's slot, and whether the sums are of squares. */
 static inline uint guide_window_word(const Guide* g, uint key)
 {
-    return g->tables[g->params->leaf_slots_at + key] | (g->params->window_power == 2u ? FEN_GUIDE_WINDOW_SQUARED : 0u);
+    return g->tables[g->params->leaf_slots_at + key] | (g->params->window_power == 2u ? FEN_GUIDE_WINDOW_SQUARED : 0u) |
+           (g->params->aim_sums ? FEN_GUIDE_WINDOW_AIM : 0u);
 }
 
 /* Adds held entry i to window_stats and empties it. */

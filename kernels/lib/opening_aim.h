@@ -69,11 +69,28 @@ static inline uint opening_enter(global const OpeningAim* aim, global const uint
     return flags | (code << FEN_PATH_OPENING_SHIFT);
 }
 
-/* A connection of luminance y (at the statistics' scale, `scale` per unit) that reached the camera,
-   made by a path that entered through opening side `code`: added to that side's statistics. */
-static inline void opening_deliver(volatile global ulong* stats, uint code, float y, float scale)
+/* The word a camera connection carries for the path (Connection.to_cam.w): its opening code, and
+   how its first diffuse vertex scattered (FEN_OPENING_CONNECTION_MIXED, _AIM_REGION). */
+static inline uint opening_connection_word(uint flags)
 {
-    if (code == 0u || code == FEN_PATH_OPENING_OTHER || !(y > 0.0f))
+    return path_opening(flags) | ((flags & FEN_PATH_MIXED) ? FEN_OPENING_CONNECTION_MIXED : 0u) |
+           ((flags & FEN_PATH_AIM_REGION) ? FEN_OPENING_CONNECTION_AIM_REGION : 0u);
+}
+
+/* Whether connection word `word` is of a path that entered a learned opening after a bounce. */
+static inline int opening_learned(uint word)
+{
+    const uint code = word & 0xffu;
+    return code != 0u && code != FEN_PATH_OPENING_OTHER;
+}
+
+/* A connection of luminance y (at the statistics' scale, `scale` per unit) that reached the camera,
+   made by a path whose connection word (opening_connection_word) is `word`: added to the
+   statistics of the opening side it entered by. */
+static inline void opening_deliver(volatile global ulong* stats, uint word, float y, float scale)
+{
+    const uint code = word & 0xffu;
+    if (!opening_learned(word) || !(y > 0.0f))
         return;
     fixed_add128(stats + FEN_OPENING_STATS_WORDS * (ulong)(code - 1u) + FEN_OPENING_DELIVERED_LO, y * scale);
 }
@@ -148,13 +165,13 @@ static inline float3 aim_draw(global const OpeningAim* aim, float3 x, const floa
 }
 
 /* One sample of the mixture at x (side n, unit), W = total > 0: `cosine`, a direction the caller drew
-   from the cosine, with probability s (bits.x), else aim_draw() (*aimed = 1). Returns the direction;
+   from the cosine, with probability s (bits.x; the share, in (0, 1]), else aim_draw() (*aimed = 1).
+   Returns the direction;
    *ratio = p(v) / (cos / pi), the factor the weight is divided by, or 0 where v lies below the
    surface (a point of a triangle partly behind it: nothing is sent that way). */
 static inline float3 aim_mixture(global const OpeningAim* aim, float3 x, float3 n, const float* w, float total,
-                                 float3 cosine, RngBlock bits, int* aimed, float* ratio)
+                                 float s, float3 cosine, RngBlock bits, int* aimed, float* ratio)
 {
-    const float s = aim->cosine_share;
     *aimed = fen_u32_to_unit(bits.x) >= s;
     const float3 v = *aimed ? aim_draw(aim, x, w, total, bits) : cosine;
     const float c = dot(v, n);

@@ -129,9 +129,10 @@ static inline float2 cosine_square_of(float3 n, float3 v)
    is nothing to aim at from x (the caller scatters as it would without the aim); else whether the
    path goes on, *next and the weight as scatter_diffuse() leaves them times (cos / pi) over the
    mixture's density, *d_aim that density over the cosine's and *sq the direction's point of the
-   cosine's square. */
+   cosine's square. At a path's first diffuse vertex (first), its flags say for the share's
+   statistics that it drew from the mixture, and whether in the aim's region. */
 static inline int scatter_aimed(global const RenderParams* params, const Guide* guide, PathState* p, float3 albedo,
-                                float3 x, float3 n, float4 u, float3* next, float* d_aim, float2* sq,
+                                float3 x, float3 n, float4 u, int first, float3* next, float* d_aim, float2* sq,
                                 VertexTally* t)
 {
     global const OpeningAim* aim = guide->aim;
@@ -141,6 +142,7 @@ static inline int scatter_aimed(global const RenderParams* params, const Guide* 
     const float total = aim_weights(aim, x, n, w);
     if (!(total > 0.0f))
         return -1;
+    const float share = first ? aim->first_share : aim->cosine_share;
     *sq = u.yz;
     *d_aim = 1.0f;
     if (!scatter_diffuse(params, p, albedo, n, u, next))
@@ -148,12 +150,16 @@ static inline int scatter_aimed(global const RenderParams* params, const Guide* 
     const RngBlock bits = rng_path_bits(params->seed, p->path_lo, p->path_hi, p->depth + 1, FEN_RNG_GUIDE);
     int aimed;
     float ratio;
-    const float3 v = aim_mixture(aim, x, n, w, total, *next, bits, &aimed, &ratio);
+    const float3 v = aim_mixture(aim, x, n, w, total, share, *next, bits, &aimed, &ratio);
     if (!(ratio > 0.0f))
         return 0;
     p->beta.xyz /= ratio;
     *next = v;
     *d_aim = ratio;
+    /* at a first vertex, for the share's statistics: drawn by the mixture, and where the aim's part
+       (1 - s) p_aim of the density passes the cosine's s p_cos, ratio = s + (1 - s) p_aim / p_cos */
+    if (first)
+        p->flags |= FEN_PATH_MIXED | (ratio > 2.0f * share ? FEN_PATH_AIM_REGION : 0u);
     if (aimed) {
         *sq = cosine_square_of(n, v);
         t->guided += 1;
@@ -173,10 +179,11 @@ static inline int scatter_first(global const RenderParams* params, const Guide* 
                                 volatile global ulong* counters)
 {
     t->diffuse += 1;
+    p->flags &= ~(FEN_PATH_MIXED | FEN_PATH_AIM_REGION); /* a branch may start here after a sibling */
     float d_aim;
     float2 sq;
     if (guide->params->slots == 0u) {
-        const int aimed = scatter_aimed(params, guide, p, albedo, x, n, u, next, &d_aim, &sq, t);
+        const int aimed = scatter_aimed(params, guide, p, albedo, x, n, u, 1, next, &d_aim, &sq, t);
         return aimed >= 0 ? aimed : scatter_diffuse(params, p, albedo, n, u, next);
     }
     uint key;
@@ -184,7 +191,7 @@ static inline int scatter_first(global const RenderParams* params, const Guide* 
     const uint4 r = guide_record_of(guide, slot);
     if (guide->params->windows_at)
         guide_arrive(guide, slot, rgb_luminance(p->beta.xyz) * window_units(params, cam), counters);
-    int alive = scatter_aimed(params, guide, p, albedo, x, n, u, next, &d_aim, &sq, t);
+    int alive = scatter_aimed(params, guide, p, albedo, x, n, u, 1, next, &d_aim, &sq, t);
     if (alive >= 0) {
         key = guide_leaf(guide, r, sq);
         d = sqrt(d_aim * guide_leaf_density(guide, key));
@@ -214,7 +221,7 @@ static inline int scatter_later(global const RenderParams* params, const Guide* 
     t->diffuse += 1;
     float d_aim;
     float2 sq;
-    const int aimed = scatter_aimed(params, guide, p, albedo, x, n, u, next, &d_aim, &sq, t);
+    const int aimed = scatter_aimed(params, guide, p, albedo, x, n, u, 0, next, &d_aim, &sq, t);
     if (aimed >= 0)
         return aimed;
     if (guide->params->every_vertex && guide->params->slots) {
@@ -320,7 +327,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
                 if (value.x > 0.0f || value.y > 0.0f || value.z > 0.0f) {
                     const float3 o = offset_ray_origin(x, offset_m, ng, to_cam);
                     c->org = (float4)(o, as_float(pixel));
-                    c->to_cam = (float4)(cam->position.xyz - o, as_float(path_opening(p->flags))); /* w: its opening */
+                    c->to_cam = (float4)(cam->position.xyz - o, as_float(opening_connection_word(p->flags)));
                     c->value = (float4)(value, p->beta.w); /* the emission cell */
                     /* z: the window statistics' scale, 0 without windows; w: the first vertex's
                        slot and power for them (a record, g > 0, names a leaf of the tables) */

@@ -55,10 +55,19 @@
 #define FEN_GUIDE_ARRIVED_HI 3      /*   arrived with, over A_pix (the camera's): a number of C's
                                        magnitude, to the power */
 #define FEN_GUIDE_VISITS 4          /* paths (or branches) that left a vertex there */
-#define FEN_GUIDE_WINDOW_WORDS 5
+/* The opening aim's share statistics (GuideParams.aim_sums; what the host learns the aim's cosine
+   share from, host/scatter/opening_aim.cpp learnShare), squares whatever the rule: */
+#define FEN_GUIDE_MIXED_SQ_LO 5     /* the square of the luminance C of each camera contribution made */
+#define FEN_GUIDE_MIXED_SQ_HI 6     /*   after leaving a first diffuse vertex there by the aim's mixture */
+#define FEN_GUIDE_AIMED_SQ_LO 7     /* ... of those, by a path that left in a direction where the aim's */
+#define FEN_GUIDE_AIMED_SQ_HI 8     /*   part of the mixture's density was the larger */
+#define FEN_GUIDE_WINDOW_WORDS 9
 /* Connection.guide.w with weight windows: the slot of the path's first diffuse vertex, with this
    bit set when the window statistics sum squares (window_power 2) */
 #define FEN_GUIDE_WINDOW_SQUARED 0x80000000u
+/* ... and this bit when the aim's share statistics are summed (GuideParams.aim_sums) */
+#define FEN_GUIDE_WINDOW_AIM 0x40000000u
+#define FEN_GUIDE_WINDOW_SLOT 0x3fffffffu
 
 /* A child word of a node: FEN_GUIDE_LEAF | global leaf index, or the global index of a node. */
 #define FEN_GUIDE_LEAF 0x80000000u
@@ -116,8 +125,11 @@ typedef struct {
     fen_f32 window_min;          /* the smallest window of any slot (0: none): a path whose weight is
                                     under twice it splits nowhere, so a later vertex need not find
                                     its slot to know */
+    fen_u32 aim_sums;            /* 1: sum the opening aim's share statistics (above; needs weight
+                                    windows); 0: not */
+    fen_u32 pad0, pad1, pad2;
 } GuideParams;
-FEN_ASSERT_SIZE(GuideParams, 80);
+FEN_ASSERT_SIZE(GuideParams, 96);
 FEN_ASSERT_OFFSET(GuideParams, slots, 16);
 FEN_ASSERT_OFFSET(GuideParams, stats_scale, 32);
 FEN_ASSERT_OFFSET(GuideParams, every_vertex, 48);
@@ -126,6 +138,7 @@ FEN_ASSERT_OFFSET(GuideParams, window_split_max, 60);
 FEN_ASSERT_OFFSET(GuideParams, leaf_slots_at, 68);
 FEN_ASSERT_OFFSET(GuideParams, window_later, 72);
 FEN_ASSERT_OFFSET(GuideParams, window_min, 76);
+FEN_ASSERT_OFFSET(GuideParams, aim_sums, 80);
 
 FEN_NS_END
 

@@ -44,8 +44,10 @@
     X(GuideParams, windows_at) \
     X(GuideParams, window_split_max) \
     X(GuideParams, leaf_slots_at) \
+    X(GuideParams, aim_sums) \
     X(AimTriangle, normal)   \
     X(OpeningAim, cosine_share) \
+    X(OpeningAim, first_share) \
     X(OpeningAim, tri)       \
     X(RenderParams, sun_dir) \
     X(RenderParams, path_end) \

@@ -29,6 +29,11 @@
 #define FEN_OPENING_MAX 127         /* openings learned; 2 j + side + 1 <= 254 */
 #define FEN_PATH_OPENING_SHIFT 24u  /* PathState.flags bits 24..31: the opening side entered */
 #define FEN_PATH_OPENING_OTHER 255u /* entered through glass that is not a learned opening */
+/* Connection.to_cam.w: the path's opening code, with these bits where its first diffuse vertex drew
+   from the aim's mixture (FEN_PATH_MIXED) and drew a direction where the aim's part of the density
+   was the larger (FEN_PATH_AIM_REGION) -- what the aim's share is learned from */
+#define FEN_OPENING_CONNECTION_AIM_REGION 0x100u
+#define FEN_OPENING_CONNECTION_MIXED 0x200u
 
 /* Statistics per opening side, fen_u64 words, 128-bit fixed point at FEN_GUIDE_WINDOW_SCALE times
    RenderParams.fixed_scale (the weight windows' units, lib/shade_path.h window_units) */
@@ -51,12 +56,14 @@ FEN_ASSERT_OFFSET(AimTriangle, normal, 48);
 typedef struct {
     fen_u32 triangles;     /* in tri[]; 0: no aim (every vertex scatters as without it) */
     fen_u32 prims;         /* (primitive, opening) pairs in opening_prims; 0: nothing is learned */
-    fen_f32 cosine_share;  /* the cosine's share of the mixture, in (0, 1) */
-    fen_u32 pad0;
+    fen_f32 cosine_share;  /* the cosine's share of the mixture past a path's first diffuse vertex, in (0, 1) */
+    fen_f32 first_share;   /* ... at its first: the same, or learned by the host (host/scatter/opening_aim.cpp
+                              learnShare) */
     AimTriangle tri[FEN_AIM_MAX_TRIS];
 } OpeningAim;
 FEN_ASSERT_SIZE(OpeningAim, 16 + 64 * FEN_AIM_MAX_TRIS);
 FEN_ASSERT_OFFSET(OpeningAim, cosine_share, 8);
+FEN_ASSERT_OFFSET(OpeningAim, first_share, 12);
 FEN_ASSERT_OFFSET(OpeningAim, tri, 16);
 
 FEN_NS_END

@@ -25,6 +25,8 @@
 #define FEN_PATH_BRANCHED 4u  /* past its first diffuse vertex (where the guide's record is made) */
 #define FEN_PATH_REFLECTED 8u /* reflected by glass: no longer straight from the sky (lib/sensor.h's direct light) */
 #define FEN_PATH_WAS_SPLIT 16u /* split once (at its first diffuse vertex or, by a weight window, later): never again */
+#define FEN_PATH_MIXED 32u      /* its first diffuse vertex drew from the opening aim's mixture (lib/opening_aim.h) */
+#define FEN_PATH_AIM_REGION 64u /* ... a direction where the aim's part of the density was the larger */
 /* Bits FEN_PATH_PATCH_SHIFT to 23: the sky patch the path started from, in a daylight-coefficient
    run (lib/sky_patch.h; set at emission, kept by every later step, which only sets and clears the
    bits below); bits 24..31: the opening it entered by (shared/fen_openings.h) */
@@ -142,7 +144,8 @@ FEN_ASSERT_OFFSET(SplitState, depth, 48);
 
 typedef struct {
     fen_float4 org;     /* xyz: shadow-ray origin (offset off the surface); w: as_uint pixel or FEN_INVALID_ID */
-    fen_float4 to_cam;  /* xyz: camera position - org, the segment t in (0, 1) */
+    fen_float4 to_cam;  /* xyz: camera position - org, the segment t in (0, 1); w: as_uint the path's
+                           opening word (lib/opening_aim.h opening_connection_word) */
     fen_float4 value;   /* rgb: contribution to the pixel (cd/m^2 x paths) if nothing blocks it;
                            w: the path's beta.w (its emission cell) */
     fen_float4 guide;   /* the path's first-bounce guide record (PathState org.w, dir.w): x the

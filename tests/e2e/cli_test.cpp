@@ -553,6 +553,24 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
                 "--adaptive-window-later: applies past the first vertex, which --adaptive-window-vertices first turns off");
     expectError(run("render " + good + out + " --adaptive-window off --adaptive-window-later 2"), 1,
                 "--adaptive-window-later: applies with weight windows, which --adaptive-window off turns off");
+    // the opening aim's share: learned or a number; its bounds in range, only when it is learned
+    expectError(run("render " + good + out + " --adaptive-aim-share maybe"), 1,
+                "--adaptive-aim-share 'maybe': expected learned or a number in (0, 1)");
+    expectError(run("render " + good + out + " --adaptive-aim-share 0.5x"), 1,
+                "--adaptive-aim-share '0.5x': expected learned or a number in (0, 1)");
+    expectError(run("render " + good + out + " --adaptive-aim-share 1"), 1, "--adaptive-aim-share 1: must be in (0, 1)");
+    expectError(run("render " + good + out + " --adaptive-aim off --adaptive-aim-share learned"), 1,
+                "--adaptive-aim-share: applies with the opening aim, which --adaptive-aim off turns off");
+    expectError(run("render " + good + out + " --adaptive-aim-share 0.5 --adaptive-aim-share-min 0.3"), 1,
+                "--adaptive-aim-share-min: applies with --adaptive-aim-share learned (the share is fixed otherwise)");
+    expectError(run("render " + good + out + " --adaptive-aim-share-max 0.9"), 1,
+                "--adaptive-aim-share-max: applies with --adaptive-aim-share learned (the share is fixed otherwise)");
+    expectError(run("render " + good + out + " --adaptive-window off --adaptive-aim-share learned"), 1,
+                "--adaptive-aim-share learned: the share is learned from the weight windows' sums, which --adaptive-window off turns off");
+    expectError(run("render " + good + out + " --adaptive-aim-share learned --adaptive-aim-share-min 0"), 1,
+                "--adaptive-aim-share-min 0: must be in (0, 1)");
+    expectError(run("render " + good + out + " --adaptive-aim-share learned --adaptive-aim-share-max 0.2"), 1,
+                "--adaptive-aim-share-max 0.2: must be in [0.25, 1]");
     // splitting: a count of branches, a positive weight unit -- never silently the default
     expectError(run("render " + good + out + " --split 0"), 1, "--split 0");
     expectError(run("render " + good + out + " --split -1"), 1, "--split -1");

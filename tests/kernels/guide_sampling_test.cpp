@@ -21,6 +21,7 @@
 #include "io/state_io.h"
 #include "util/error.h"
 #include "scatter/first_bounce_guide.h"
+#include "shared/fen_openings.h"
 #include "shared/fen_render.h"
 #include "support/cl_fixture.h"
 #include "support/statistics.h"
@@ -335,6 +336,84 @@ TEST(GuideSampling, HeldArrivalsLeaveTheSumsOfAddingEachAtOnce)
         }
         EXPECT_EQ(counters[FEN_CTR_STATS_OVERFLOWS], overflows) << "hold " << hold;
     }
+}
+
+// The opening aim's share statistics (fen_guide.h FEN_GUIDE_MIXED_SQ_LO): a contribution's square
+// adds to its first vertex's slot's mixed sum only where that vertex drew from the aim's mixture,
+// and to the aimed sum only where it drew a direction in the aim's region; never without the
+// slot's aim flag, whatever opening the path entered by.
+TEST(GuideSampling, ASlotsAimSumsAreOfPathsThatLeftItByTheMixtureAndInTheAimsRegion)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    const std::uint32_t worth = FEN_GUIDE_WINDOW_AIM, squared = FEN_GUIDE_WINDOW_SQUARED,
+                        mixed = FEN_OPENING_CONNECTION_MIXED, region = FEN_OPENING_CONNECTION_AIM_REGION;
+    // slot 2 (plain window sums): left in the aim's region, entered opening side 1 (5); by the
+    // mixture's cosine side, entered side 3 (7); by the mixture, through glass that is no learned
+    // opening (11); not by the mixture (13: nothing to aim at from there); slot 3 without the flag
+    // (17); slot 4 summing squares for the windows (3, the aim's region)
+    const std::vector<std::uint32_t> window = {2 | worth, 2 | worth, 2 | worth, 2 | worth, 3, 4 | worth | squared};
+    const std::vector<std::uint32_t> opening = {1 | mixed | region, 3 | mixed, FEN_PATH_OPENING_OTHER | mixed, 1,
+                                                1 | mixed | region, 2 | mixed | region};
+    const std::vector<float> y = {5, 7, 11, 13, 17, 3};
+    const std::vector<std::uint32_t> key(y.size(), 0u);
+    const auto n = static_cast<std::uint32_t>(y.size());
+    std::vector<std::uint64_t> words(5 * FEN_GUIDE_WINDOW_WORDS, 0), stats(FEN_GUIDE_STATS_WORDS, 0),
+        counters(FEN_CTR_COUNT, 0);
+    cl::Buffer wb = ctx->buffer(CL_MEM_READ_WRITE, words.size() * 8, "window sums", words.data());
+    cl::Buffer sb = ctx->buffer(CL_MEM_READ_WRITE, stats.size() * 8, "leaf sums", stats.data());
+    cl::Buffer cb = ctx->buffer(CL_MEM_READ_WRITE, counters.size() * 8, "counters", counters.data());
+    cl::Buffer kb = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "keys", key.data());
+    cl::Buffer yb = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "values", y.data());
+    cl::Buffer ob = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "openings", opening.data());
+    cl::Buffer vb = ctx->buffer(CL_MEM_READ_ONLY, n * 4, "windows", window.data());
+    cl::Kernel k(ctx->program("test_guide_probes.cl"), "guide_record_probe");
+    ocl::setKernelArgs(k, sb, wb, kb, yb, vb, ob, 1.0f, n, cb);
+    ocl::launch(*ctx, k, "guide_record_probe", n);
+    ctx->queue().enqueueReadBuffer(wb, CL_TRUE, 0, words.size() * 8, words.data());
+    ctx->queue().enqueueReadBuffer(cb, CL_TRUE, 0, counters.size() * 8, counters.data());
+    const auto at = [&](std::uint32_t slot, int word) { return words[std::size_t{slot} * FEN_GUIDE_WINDOW_WORDS + word]; };
+    EXPECT_EQ(at(2, FEN_GUIDE_DELIVERED_LO), 36u);             // every contribution, for the windows
+    EXPECT_EQ(at(2, FEN_GUIDE_MIXED_SQ_LO), 25u + 49u + 121u); // by the mixture, squared
+    EXPECT_EQ(at(2, FEN_GUIDE_AIMED_SQ_LO), 25u);              // ... in the aim's region
+    EXPECT_EQ(at(3, FEN_GUIDE_DELIVERED_LO), 17u);
+    EXPECT_EQ(at(3, FEN_GUIDE_MIXED_SQ_LO), 0u);
+    EXPECT_EQ(at(3, FEN_GUIDE_AIMED_SQ_LO), 0u);
+    EXPECT_EQ(at(4, FEN_GUIDE_DELIVERED_LO), 9u);
+    EXPECT_EQ(at(4, FEN_GUIDE_MIXED_SQ_LO), 9u);
+    EXPECT_EQ(at(4, FEN_GUIDE_AIMED_SQ_LO), 9u);
+    EXPECT_EQ(counters[FEN_CTR_STATS_OVERFLOWS], 0u);
+}
+
+// learn() reads the aim's share statistics of every slot into one pair for the pass (and none
+// without aimSums).
+TEST(GuideSampling, APassesAimSumsAreEverySlotsTogether)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    GuideOptions o = options();
+    o.window = true;
+    o.aimSums = true;
+    FirstBounceGuide g(*ctx, o, glm::dvec3(0.0), 8.0);
+    const auto write = [&](std::uint32_t slot, std::uint64_t mixed, std::uint64_t aimed) {
+        std::vector<std::uint64_t> words(FEN_GUIDE_WINDOW_WORDS, 0);
+        words[FEN_GUIDE_MIXED_SQ_LO] = mixed;
+        words[FEN_GUIDE_AIMED_SQ_LO] = aimed;
+        ctx->queue().enqueueWriteBuffer(g.windowStats(), CL_TRUE, std::size_t{slot} * FEN_GUIDE_WINDOW_WORDS * 8,
+                                        words.size() * 8, words.data());
+    };
+    write(1, 1000, 600);
+    write(5, 300, 0);
+    g.learn();
+    EXPECT_EQ(g.passAimSums().mixed, 1300.0);
+    EXPECT_EQ(g.passAimSums().aimed, 600.0);
+    g.learn();  // the sums were cleared after the first pass
+    EXPECT_EQ(g.passAimSums().mixed, 0.0);
+    dev::GuideParams p;
+    ctx->queue().enqueueReadBuffer(g.params(), CL_TRUE, 0, sizeof p, &p);
+    EXPECT_EQ(p.aim_sums, 1u);
+    o.aimSums = false;
+    FirstBounceGuide h(*ctx, o, glm::dvec3(0.0), 8.0);
+    ctx->queue().enqueueReadBuffer(h.params(), CL_TRUE, 0, sizeof p, &p);
+    EXPECT_EQ(p.aim_sums, 0u);
 }
 
 TEST(GuideSampling, TreesRefineWhereTheDensityConcentratesAndTheDeviceFollows)

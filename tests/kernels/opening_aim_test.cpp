@@ -333,6 +333,63 @@ TEST(OpeningAim, LearnsWhatAUnitEnteringBringsAndACheckpointCarriesIt)
     }
 }
 
+// The share that minimises A / (1 - s) + B / s.
+float bestShare(double a, double b)
+{
+    return static_cast<float>(std::sqrt(b) / (std::sqrt(a) + std::sqrt(b)));
+}
+
+// The cosine's share at a path's first vertex, learned: each pass's sums of squares times the share
+// that drew them estimate A (the aim's region, as if aimed) and B (the rest, as if drawn from the
+// cosine); the share is the one that minimises A / (1 - s) + B / s, within its bounds; the share
+// past the first vertex stays; a checkpoint carries A and B.
+TEST(OpeningAim, LearnsTheShareThatMinimisesTheSecondMomentAndACheckpointCarriesIt)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    const Scene s = glassScene();
+    OpeningAimOptions o;
+    o.learnShare = true;
+    OpeningAim aim(*ctx, o, &s);
+    EXPECT_FLOAT_EQ(aim.firstShare(), 0.75f) << "where it starts";
+    aim.learnShare(0.0, 0.0);  // nothing drawn by the mixture: nothing learned
+    EXPECT_FLOAT_EQ(aim.firstShare(), 0.75f);
+    // pass 1 at 0.75: 600 of 1000 in the aim's region: A = 600 x 0.25, B = 400 x 0.75
+    aim.learnShare(1000.0, 600.0);
+    const float s1 = bestShare(150.0, 300.0);
+    EXPECT_EQ(aim.firstShare(), s1);
+    // pass 2, drawn at s1
+    aim.learnShare(1000.0, 600.0);
+    const double a2 = 150.0 + 600.0 * (1.0 - s1), b2 = 300.0 + 400.0 * static_cast<double>(s1);
+    EXPECT_EQ(aim.firstShare(), bestShare(a2, b2));
+    aim.learn();  // uploads it
+    dev::OpeningAim d;
+    ctx->queue().enqueueReadBuffer(aim.aim(), CL_TRUE, 0, sizeof d, &d);
+    EXPECT_EQ(d.first_share, bestShare(a2, b2));
+    EXPECT_FLOAT_EQ(d.cosine_share, 0.75f) << "past the first vertex the share stays";
+    EXPECT_EQ(aim.report()["first_share"].get<float>(), bestShare(a2, b2));
+    // A checkpoint carries A and B: the same share after loading
+    StateWriter w;
+    aim.save(w);
+    OpeningAim again(*ctx, o, &s);
+    StateReader r(w.bytes(), "test.ckpt");
+    again.load(r);
+    EXPECT_EQ(again.firstShare(), bestShare(a2, b2));
+    // the bounds: everything in the aim's region (B = 0) holds at shareMin, nothing at shareMax
+    OpeningAim all(*ctx, o, &s);
+    all.learnShare(1000.0, 1000.0);
+    EXPECT_FLOAT_EQ(all.firstShare(), 0.25f);
+    OpeningAim none(*ctx, o, &s);
+    none.learnShare(1000.0, 0.0);
+    EXPECT_FLOAT_EQ(none.firstShare(), 0.95f);
+    // a fixed share is never moved
+    o.learnShare = false;
+    o.cosineShare = 0.6;
+    OpeningAim fixed(*ctx, o, &s);
+    fixed.learnShare(1000.0, 600.0);
+    EXPECT_FLOAT_EQ(fixed.firstShare(), 0.6f);
+    EXPECT_FALSE(fixed.report()["share_learned"].get<bool>());
+}
+
 TEST(OpeningAim, OptionsOutOfRangeAreOneLineErrors)
 {
     OpeningAimOptions o;
@@ -345,6 +402,16 @@ TEST(OpeningAim, OptionsOutOfRangeAreOneLineErrors)
     EXPECT_THROW(validateOpeningAimOptions(o), Error);
     o = OpeningAimOptions{};
     o.minShare = 1.0;
+    EXPECT_THROW(validateOpeningAimOptions(o), Error);
+    o = OpeningAimOptions{};
+    o.shareMin = 1.0;
+    EXPECT_THROW(validateOpeningAimOptions(o), Error);
+    o = OpeningAimOptions{};
+    o.shareMax = 1.5;
+    EXPECT_THROW(validateOpeningAimOptions(o), Error);
+    o = OpeningAimOptions{};
+    o.shareMin = 0.5;
+    o.shareMax = 0.4;
     EXPECT_THROW(validateOpeningAimOptions(o), Error);
 }
 

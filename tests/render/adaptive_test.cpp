@@ -183,6 +183,36 @@ TEST(AdaptiveAim, TheCourtyardAgreesWithUniformAndTheAimSendsLightIn)
     EXPECT_EQ(o.emission["aim"].value("aimed_triangles", -1), 0);
 }
 
+// The aim's share at first vertices, learned, against fixed at 0.75: the courtyard's light reaches
+// the camera mostly by leaving its walls and ground towards the window, so the share it learns is
+// below 0.75 and, at the same paths, the mean's standard error is below the fixed share's;
+// unbiased both ways (within 4 sigma of uniform emission).
+TEST(AdaptiveAim, TheLearnedShareAimsMoreInTheCourtyardAndStaysUnbiased)
+{
+    FEN_CL_CONTEXT_OR_SKIP(ctx);
+    const Scene scene = loadGltf(std::string(FEN_SCENES_DIR) + "/courtyard.gltf");
+    const Roi whole{0, 0, 48, 36};
+    const Measured u = measure(*ctx, scene, EmissionMethod::Uniform, 12u << 20, PortalOverlap::Reject, "", 48, 36, whole);
+    EmissionSettings learning = adaptive(EmissionMethod::Uniform);
+    learning.adaptive.aim.learnShare = true;
+    const Measured learned = measure(*ctx, scene, learning, 3u << 20, 48, 36, whole);
+    EmissionSettings fixed = adaptive(EmissionMethod::Uniform);
+    fixed.adaptive.aim.learnShare = false;
+    fixed.adaptive.aim.cosineShare = 0.75;
+    const Measured f = measure(*ctx, scene, fixed, 3u << 20, 48, 36, whole);
+    expectAgree(f, u, "adaptive with the aim's share fixed at 0.75 vs uniform", "aim fixed");
+    expectAgree(learned, u, "adaptive with the aim's first share learned vs uniform", "aim learned");
+    const double share = learned.emission["aim"].value("first_share", 1.0);
+    std::printf("[ aim      ] courtyard at 3M paths: standard error %.3g with the share learned (%.3g), %.3g at 0.75\n",
+                learned.se, share, f.se);
+    EXPECT_TRUE(learned.emission["aim"].value("share_learned", false));
+    EXPECT_LT(share, 0.75);
+    EXPECT_GE(share, 0.25);
+    EXPECT_LT(learned.se, f.se);
+    EXPECT_DOUBLE_EQ(f.emission["aim"].value("first_share", 0.0), 0.75);
+    EXPECT_DOUBLE_EQ(learned.emission["aim"].value("cosine_share", 0.0), 0.75) << "past the first vertex";
+}
+
 TEST(AdaptiveDeterminism, SameSeedSameImageAndGridWhateverThePool)
 {
     FEN_CL_CONTEXT_OR_SKIP(ctx);

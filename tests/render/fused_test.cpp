@@ -30,6 +30,7 @@ struct Case {
     bool guideEveryVertex = false;
     bool window = false;
     bool windowEveryVertex = true;  // with windows: later vertices split too (the default)
+    bool aimShareLearned = false;   // the opening aim's first-vertex share learned (else 0.75)
 };
 
 RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
@@ -55,6 +56,8 @@ RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
     s.emission.adaptive.guide.windowMinSurvival = 0.25;  // some culled, some split
     s.emission.adaptive.guide.minConnections = 4.0;
     s.emission.adaptive.guide.minGain = 1.0;  // tables in use wherever anything was seen
+    s.emission.adaptive.aim.learnShare = c.aimShareLearned;
+    s.emission.adaptive.aim.cosineShare = 0.75;
     s.rois = {Roi{0, 0, 48, 36}};
     Renderer r(ctx, scene, sky, scene.cameras.at(0), 48, 36, s);
     return r.render();
@@ -157,7 +160,10 @@ INSTANTIATE_TEST_SUITE_P(
                       // the opening aim (on in every adaptive case) where light bounces outside before it
                       // gets in, with windows splitting: branches start from the split's opening code
                       Case{"adaptive_aim_courtyard", "courtyard.gltf", EmissionMethod::Adaptive,
-                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true}),
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true},
+                      // ... and its share at first vertices learned from the windows' sums
+                      Case{"adaptive_aim_learned_courtyard", "courtyard.gltf", EmissionMethod::Adaptive,
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true, true, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
