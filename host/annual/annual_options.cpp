@@ -7,6 +7,7 @@
 
 #include "annual/sky_patches.h"
 #include "util/error.h"
+#include "util/parse_number.h"
 
 namespace fen {
 
@@ -38,17 +39,12 @@ bool parsePair(const std::string& text, char sep, double* a, double* b)
     const std::size_t k = text.find(sep);
     if (k == std::string::npos || k == 0 || k + 1 >= text.size())
         return false;
-    try {
-        std::size_t used = 0;
-        *a = std::stod(text.substr(0, k), &used);
-        if (used != k)
-            return false;
-        const std::string rest = text.substr(k + 1);
-        *b = std::stod(rest, &used);
-        return used == rest.size() && std::isfinite(*a) && std::isfinite(*b);
-    } catch (const std::exception&) {
+    const std::optional<double> x = parseWholeNumber(text.substr(0, k)), y = parseWholeNumber(text.substr(k + 1));
+    if (!x || !y)
         return false;
-    }
+    *a = *x;
+    *b = *y;
+    return true;
 }
 
 }  // namespace

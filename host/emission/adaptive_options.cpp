@@ -9,6 +9,7 @@
 
 #include "emission/strategy_registry.h"
 #include "util/error.h"
+#include "util/parse_number.h"
 
 namespace fen {
 
@@ -188,17 +189,11 @@ public:
         if (aimShare_ && *aimShare_ == "learned") {
             a.aim.learnShare = true;
         } else if (aimShare_) {
-            std::size_t used = 0;
-            double v = 0.0;
-            try {
-                v = std::stod(*aimShare_, &used);
-            } catch (const std::exception&) {
-                used = 0;
-            }
-            if (used == 0 || used != aimShare_->size())
+            const std::optional<double> v = parseWholeNumber(*aimShare_);
+            if (!v)
                 throw Error(cat("--adaptive-aim-share '", printable(*aimShare_, 40), "': expected learned or a number in (0, 1)"));
             a.aim.learnShare = false;
-            a.aim.cosineShare = v;
+            a.aim.cosineShare = *v;
         }
         if ((aimShareMin_ || aimShareMax_) && !a.aim.learnShare)
             throw Error(cat(aimShareMin_ ? "--adaptive-aim-share-min" : "--adaptive-aim-share-max",

@@ -636,7 +636,6 @@ void FirstBounceGuide::learn()
     pass.sumSq.resize(leafCount_);  // every element is written below
     pass.connections.resize(leafCount_);
     std::vector<double> passConnections(trees_.size(), 0.0);
-    slotAimSums_.assign(deviceParams_.aim_sums ? trees_.size() : 0, AimSums{});
     // Slot by slot, each writing only its own leaves and sums: the slots in shares over the threads.
     inShares(trees_.size(), [&](std::size_t s0, std::size_t s1) {
         for (std::size_t s = s0; s < s1; ++s) {
@@ -658,16 +657,17 @@ void FirstBounceGuide::learn()
                 t.window.delivered += fixed128(ww + FEN_GUIDE_DELIVERED_LO);
                 t.window.arrived += fixed128(ww + FEN_GUIDE_ARRIVED_LO);
                 t.window.visits += static_cast<double>(ww[FEN_GUIDE_VISITS]);
-                if (deviceParams_.aim_sums)
-                    slotAimSums_[s] = {fixed128(ww + FEN_GUIDE_MIXED_SQ_LO), fixed128(ww + FEN_GUIDE_AIMED_SQ_LO)};
             }
         }
     }, 64);
+    // the aim's sums over every slot, in slot order (deterministic)
     passAimSums_ = AimSums{};
-    for (const AimSums& a : slotAimSums_) {
-        passAimSums_.mixed += a.mixed;
-        passAimSums_.aimed += a.aimed;
-    }
+    if (deviceParams_.aim_sums)
+        for (std::size_t s = 0; s < trees_.size(); ++s) {
+            const std::uint64_t* ww = windowRaw.data() + s * FEN_GUIDE_WINDOW_WORDS;
+            passAimSums_.mixed += fixed128(ww + FEN_GUIDE_MIXED_SQ_LO);
+            passAimSums_.aimed += fixed128(ww + FEN_GUIDE_AIMED_SQ_LO);
+        }
     lastSplits_ = refine(pass);  // keeps leafCount_
     lastSpatialSplits_ = refineSpace(passConnections);
     rebuild();

@@ -273,7 +273,6 @@ private:
         leafSlotWords_;
     std::size_t windowSlots_ = 0;  // slots with a window, after rebuild()
     AimSums passAimSums_;
-    std::vector<AimSums> slotAimSums_;  // learn()'s per slot, summed in slot order (deterministic)
     double windowTarget_ = 0.0;    // T, in units of the delivered statistic, after rebuild()
     std::uint32_t learnedSlots_ = 0, candidateSlots_ = 0, maxDepthSeen_ = 0;
     double learnSeconds_ = 0.0, lastLearnSeconds_ = 0.0;

@@ -11,6 +11,7 @@
 #include "sky/solar_position.h"
 #include "sky/weather_sky.h"
 #include "util/error.h"
+#include "util/parse_number.h"
 
 namespace fen {
 
@@ -22,16 +23,10 @@ constexpr double kMaxPlausibleSunLux = 150000.0;
 
 double parseNumber(const std::string& s, const std::string& what)
 {
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-        v = std::stod(s, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != s.size() || !std::isfinite(v))
+    const std::optional<double> v = parseWholeNumber(s);
+    if (!v)
         throw Error(cat(what, ": '", printable(s, 40), "' is not a number"));
-    return v;
+    return *v;
 }
 
 // "A,B" as two finite numbers.
