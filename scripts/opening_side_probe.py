@@ -25,6 +25,8 @@ light reflected outside.
     python3 scripts/opening_side_probe.py --share 0.9 --out out/probe/s90
     FEN_KERNEL_DIR=out/probe/s90 build/fenestra render scenes/courtyard.gltf --time 20 ...
 
+--first-inside makes a path from a pane take its first vertex inside as a light path's first
+vertex (the guide steers it, weight windows split it there) rather than as a later one.
 --part openings or lines keeps only that part's contributions (the other's paths are still traced,
 their weight zero), to see which part the noise comes from. The edits anchor on lines of
 kernels/lib/{shade_path,fused_kernel,emit_adaptive,connect_path}.h and kernels/emit_adaptive.cl; if
@@ -51,6 +53,7 @@ HEADER = r"""/* opening_side.h -- written by scripts/opening_side_probe.py (a pr
 #define OSP_SHARE %(share)sf
 #define OSP_KEEP_OPENINGS %(keep_openings)d
 #define OSP_KEEP_LINES %(keep_lines)d
+#define OSP_FIRST_INSIDE %(first_inside)d
 #define OSP_MAX_VERTICES 16u
 #define OSP_NO_PART 0x7fffffffu /* beta.w of a path through the openings: no emission cell */
 /* PathState.flags, free while no annual study tags sky patches: */
@@ -189,7 +192,9 @@ static inline int osp_path(global const RenderParams* params, const Sky* sky, fl
     p->dir = (float4)(in, 0.0f);
     p->beta = (float4)(beta, as_float(OSP_NO_PART));
     p->depth = 2; /* as a light path that bounced once outside */
-    p->flags |= FEN_PATH_BRANCHED | (FEN_PATH_OPENING_OTHER << FEN_PATH_OPENING_SHIFT);
+    /* --first-inside: its first vertex inside is a first vertex (the guide steers it, weight windows
+       split it); else a later one */
+    p->flags |= (OSP_FIRST_INSIDE ? 0u : FEN_PATH_BRANCHED) | (FEN_PATH_OPENING_OTHER << FEN_PATH_OPENING_SHIFT);
     return 1;
 }
 #define OSP_AIM_OFF 1
@@ -292,13 +297,16 @@ def main():
                     help="the share of path indices that start at the openings, (0, 1) (default 0.9)")
     ap.add_argument("--part", choices=("both", "openings", "lines"), default="both",
                     help="whose contributions to keep (default both: the image)")
+    ap.add_argument("--first-inside", action="store_true",
+                    help="a path from a pane makes its first vertex inside a first vertex: the guide steers it "
+                         "and weight windows split it there (default: a later vertex, as a light path's after a bounce)")
     ap.add_argument("--kernels", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "kernels"))
     ap.add_argument("--out", required=True, help="the kernel folder to write (replaced)")
     a = ap.parse_args()
     if not 0.0 < a.share < 1.0:
         sys.exit(f"opening_side_probe.py: --share {a.share} is not in (0, 1)")
     header = HEADER % {"share": repr(a.share), "keep_openings": int(a.part != "lines"),
-                       "keep_lines": int(a.part != "openings")}
+                       "keep_lines": int(a.part != "openings"), "first_inside": int(a.first_inside)}
     if os.path.exists(a.out):
         shutil.rmtree(a.out)
     shutil.copytree(a.kernels, a.out)
@@ -313,7 +321,8 @@ def main():
     for path, src in sources.items():
         open(path, "w").write(src)
     open(os.path.join(a.out, "lib", "opening_side.h"), "w").write(header)
-    print(f"wrote {a.out}: share {a.share} of the paths start at the openings; keeping {a.part}")
+    print(f"wrote {a.out}: share {a.share} of the paths start at the openings"
+          f"{', their first vertex inside a first vertex' if a.first_inside else ''}; keeping {a.part}")
 
 
 if __name__ == "__main__":
