@@ -27,6 +27,8 @@ light reflected outside.
 
 --first-inside makes a path from a pane take its first vertex inside as a light path's first
 vertex (the guide steers it, weight windows split it there) rather than as a later one.
+--sky-through lines leaves the sky seen straight through a listed pane to the light paths (adaptive
+emission's learned cells) instead of the openings' walk.
 --part openings or lines keeps only that part's contributions (the other's paths are still traced,
 their weight zero), to see which part the noise comes from. The edits anchor on lines of
 kernels/lib/{shade_path,fused_kernel,emit_adaptive,connect_path}.h and kernels/emit_adaptive.cl; if
@@ -54,6 +56,7 @@ HEADER = r"""/* opening_side.h -- written by scripts/opening_side_probe.py (a pr
 #define OSP_KEEP_OPENINGS %(keep_openings)d
 #define OSP_KEEP_LINES %(keep_lines)d
 #define OSP_FIRST_INSIDE %(first_inside)d
+#define OSP_SKY_THROUGH %(sky_through)d /* the sky seen straight through a listed pane is this part's */
 #define OSP_MAX_VERTICES 16u
 #define OSP_NO_PART 0x7fffffffu /* beta.w of a path through the openings: no emission cell */
 /* PathState.flags, free while no annual study tags sky patches: */
@@ -143,7 +146,7 @@ static inline int osp_path(global const RenderParams* params, const Sky* sky, fl
         *rays += 1;
         const SurfaceHit h = closest_surface(nodes, packets, o, d);
         if (as_uint(h.normal.w) == FEN_INVALID_ID) {
-            if (i == 0u)
+            if (i == 0u && OSP_SKY_THROUGH)
                 L += (float3)(sky_eval(sky, d)); /* the sky's (the sun's disk stays the light paths') */
             break; /* past the first vertex the sky came by its next-event ray */
         }
@@ -236,7 +239,8 @@ EDITS = [
                                      p->beta.xyz, window_units(params, cam));""", """#ifdef OSP_PROBE
             /* the openings' part: a light path's first glass a listed pane side, after a bounce or
                straight from the sky, and no glass reflected it outside */
-            if (path_opening(p->flags) == 0u && ((p->flags & FEN_PATH_BRANCHED) || !(p->flags & OSP_PATH_SUN)) &&
+            if (path_opening(p->flags) == 0u &&
+                ((p->flags & FEN_PATH_BRANCHED) || (OSP_SKY_THROUGH && !(p->flags & OSP_PATH_SUN))) &&
                 !(p->flags & OSP_PATH_GLASS_OUTSIDE) && osp_listed(guide->aim, x, dir))
                 alive = 0;
             else
@@ -300,13 +304,17 @@ def main():
     ap.add_argument("--first-inside", action="store_true",
                     help="a path from a pane makes its first vertex inside a first vertex: the guide steers it "
                          "and weight windows split it there (default: a later vertex, as a light path's after a bounce)")
+    ap.add_argument("--sky-through", choices=("openings", "lines"), default="openings",
+                    help="whose is the sky seen straight through a listed pane (default openings: the walk's "
+                         "first look; lines: the light paths keep it, adaptive emission's learned cells)")
     ap.add_argument("--kernels", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "kernels"))
     ap.add_argument("--out", required=True, help="the kernel folder to write (replaced)")
     a = ap.parse_args()
     if not 0.0 < a.share < 1.0:
         sys.exit(f"opening_side_probe.py: --share {a.share} is not in (0, 1)")
     header = HEADER % {"share": repr(a.share), "keep_openings": int(a.part != "lines"),
-                       "keep_lines": int(a.part != "openings"), "first_inside": int(a.first_inside)}
+                       "keep_lines": int(a.part != "openings"), "first_inside": int(a.first_inside),
+                       "sky_through": int(a.sky_through == "openings")}
     if os.path.exists(a.out):
         shutil.rmtree(a.out)
     shutil.copytree(a.kernels, a.out)
@@ -322,7 +330,8 @@ def main():
         open(path, "w").write(src)
     open(os.path.join(a.out, "lib", "opening_side.h"), "w").write(header)
     print(f"wrote {a.out}: share {a.share} of the paths start at the openings"
-          f"{', their first vertex inside a first vertex' if a.first_inside else ''}; keeping {a.part}")
+          f"{', their first vertex inside a first vertex' if a.first_inside else ''}; the sky seen straight through "
+          f"a pane: the {a.sky_through}' part; keeping {a.part}")
 
 
 if __name__ == "__main__":
