@@ -2,8 +2,10 @@
 // (adaptive_options.h).
 #include "emission/adaptive_options.h"
 
+#include <initializer_list>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
@@ -26,6 +28,16 @@ bool choice(const std::string& option, const std::string& given, const char* yes
     if (given == yes || given == no)
         return given == yes;
     throw Error(cat(option, " '", printable(given, 40), "': expected ", yes, " or ", no));
+}
+
+// The first given of a group of options (in the order listed: the one an error names), or nullptr
+// when none was given.
+const char* firstGiven(std::initializer_list<std::pair<bool, const char*>> options)
+{
+    for (const auto& [given, name] : options)
+        if (given)
+            return name;
+    return nullptr;
 }
 
 class AdaptiveOptionBlock final : public StrategyOptionBlock {
@@ -171,21 +183,23 @@ public:
         a.guide.windowLater = windowLater_.value_or(a.guide.windowLater);
         if (windowLater_ && !a.guide.windowEveryVertex)
             throw Error("--adaptive-window-later: applies past the first vertex, which --adaptive-window-vertices first turns off");
-        if ((windowSplit_ || windowSurvival_ || windowVertices_ || windowLater_) && !a.guide.window)
-            throw Error(cat(windowSplit_ ? "--adaptive-window-split"
-                                         : (windowSurvival_ ? "--adaptive-window-survival"
-                                                            : (windowLater_ ? "--adaptive-window-later" : "--adaptive-window-vertices")),
-                            ": applies with weight windows, which ",
-                            window_ ? "--adaptive-window off" : "--adaptive-guide off", " turns off"));
+        const char* windowsOff = window_ ? "--adaptive-window off" : "--adaptive-guide off";
+        if (const char* o = firstGiven({{windowSplit_.has_value(), "--adaptive-window-split"},
+                                        {windowSurvival_.has_value(), "--adaptive-window-survival"},
+                                        {windowLater_.has_value(), "--adaptive-window-later"},
+                                        {windowVertices_.has_value(), "--adaptive-window-vertices"}});
+            o && !a.guide.window)
+            throw Error(cat(o, ": applies with weight windows, which ", windowsOff, " turns off"));
         if (a.guide.window && !a.guide.enabled)
             throw Error("--adaptive-window: needs --adaptive-guide on (the windows are learned with the guide)");
         if (aim_)
             a.aim.enabled = choice("--adaptive-aim", *aim_, "on", "off");
-        if ((aimShare_ || aimPower_ || aimShareMin_ || aimShareMax_) && !a.aim.enabled)
-            throw Error(cat(aimShare_ ? "--adaptive-aim-share"
-                                      : (aimPower_ ? "--adaptive-aim-power"
-                                                   : (aimShareMin_ ? "--adaptive-aim-share-min" : "--adaptive-aim-share-max")),
-                            ": applies with the opening aim, which --adaptive-aim off turns off"));
+        if (const char* o = firstGiven({{aimShare_.has_value(), "--adaptive-aim-share"},
+                                        {aimPower_.has_value(), "--adaptive-aim-power"},
+                                        {aimShareMin_.has_value(), "--adaptive-aim-share-min"},
+                                        {aimShareMax_.has_value(), "--adaptive-aim-share-max"}});
+            o && !a.aim.enabled)
+            throw Error(cat(o, ": applies with the opening aim, which --adaptive-aim off turns off"));
         if (aimShare_ && *aimShare_ == "learned") {
             a.aim.learnShare = true;
         } else if (aimShare_) {
@@ -195,14 +209,13 @@ public:
             a.aim.learnShare = false;
             a.aim.cosineShare = *v;
         }
-        if ((aimShareMin_ || aimShareMax_) && !a.aim.learnShare)
-            throw Error(cat(aimShareMin_ ? "--adaptive-aim-share-min" : "--adaptive-aim-share-max",
-                            ": applies with --adaptive-aim-share learned (the share is fixed otherwise)"));
-        if ((aimShareMin_ || aimShareMax_ || (aimShare_ && a.aim.learnShare)) && !a.guide.window)
-            throw Error(cat(aimShareMin_ ? "--adaptive-aim-share-min"
-                                         : (aimShareMax_ ? "--adaptive-aim-share-max" : "--adaptive-aim-share learned"),
-                            ": the share is learned from the weight windows' sums, which ",
-                            window_ ? "--adaptive-window off" : "--adaptive-guide off", " turns off"));
+        const char* bound = firstGiven({{aimShareMin_.has_value(), "--adaptive-aim-share-min"},
+                                        {aimShareMax_.has_value(), "--adaptive-aim-share-max"}});
+        if (bound && !a.aim.learnShare)
+            throw Error(cat(bound, ": applies with --adaptive-aim-share learned (the share is fixed otherwise)"));
+        if (const char* o = bound ? bound : (aimShare_ && a.aim.learnShare ? "--adaptive-aim-share learned" : nullptr);
+            o && !a.guide.window)
+            throw Error(cat(o, ": the share is learned from the weight windows' sums, which ", windowsOff, " turns off"));
         a.aim.shareMin = aimShareMin_.value_or(a.aim.shareMin);
         a.aim.shareMax = aimShareMax_.value_or(a.aim.shareMax);
         a.aim.power = aimPower_.value_or(a.aim.power);
