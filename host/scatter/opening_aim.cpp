@@ -129,7 +129,7 @@ OpeningAim::OpeningAim(ocl::Context& ctx, const OpeningAimOptions& o, const Scen
             a.p0 = {t.p0.x, t.p0.y, t.p0.z, static_cast<float>(0.5 * glm::length(cr))};
             a.e1 = {e1.x, e1.y, e1.z, 0.0f};
             a.e2 = {e2.x, e2.y, e2.z, 0.0f};
-            a.normal = {nt.x, nt.y, nt.z, 0.0f};
+            a.normal = {nt.x, nt.y, nt.z, dev::fen_as_float(op.triangles[k])};
             triangles_.push_back(a);
         }
     }

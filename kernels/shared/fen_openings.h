@@ -48,7 +48,8 @@ typedef struct {
     fen_float4 p0;     /* xyz: a corner (m); w: the triangle's area (m^2) */
     fen_float4 e1;     /* xyz: p1 - p0; w: the aim's weight seen from the front (where normal points) */
     fen_float4 e2;     /* xyz: p2 - p0; w: ... from the back */
-    fen_float4 normal; /* xyz: unit, along cross(e1, e2) as lib/surface_hit.h's; w: unused (0) */
+    fen_float4 normal; /* xyz: unit, along cross(e1, e2) as lib/surface_hit.h's; w: the glass primitive's
+                          index, as bits (fen_as_float) */
 } AimTriangle;
 FEN_ASSERT_SIZE(AimTriangle, 64);
 FEN_ASSERT_OFFSET(AimTriangle, normal, 48);
