@@ -8,5 +8,6 @@
 #define FEN_EMITTER_MAKE FEN_ADAPTIVE_EMITTER
 #define FEN_EMITTER_EMIT emit_adaptive
 #define FEN_EMITTER_REJECTS 1
+#define FEN_EMITTER_OPENINGS 1 /* lib/opening_walk.h */
 
 #include "lib/emit_kernel.h"

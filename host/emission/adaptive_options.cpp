@@ -107,6 +107,8 @@ public:
                           "With adaptive --adaptive-aim-share learned: the most share it learns, [min, 1] (default 0.95)");
         render.add_option("--adaptive-aim-power", aimPower_,
                           "With adaptive --adaptive-aim on: weigh each opening by its learned worth to this power, (0, 2] (default 1)");
+        render.add_option("--adaptive-openings-share", openingsShare_,
+                          "With adaptive --adaptive-aim on: the share of paths that start on the aimed panes and take the light reflected outside by walking outwards, [0, 1) (default 0: none; 0.9 for a room lit by a sunlit facing wall)");
         render.add_option("--adaptive-guide-memory", guideMemory_,
                           "With adaptive --adaptive-guide on: MiB of device memory for the guide's trees (default 256)");
         render.add_option("--adaptive-target", target_,
@@ -130,7 +132,7 @@ public:
                            target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_ || guideMinGain_ ||
                            guideMinContributions_ ||
                            guideVertices_ || window_ || windowSplit_ || windowSurvival_ || windowVertices_ || windowLater_ || aim_ ||
-                           aimShare_ || aimPower_ || aimShareMin_ || aimShareMax_;
+                           aimShare_ || aimPower_ || aimShareMin_ || aimShareMax_ || openingsShare_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
@@ -196,6 +198,7 @@ public:
             a.aim.enabled = choice("--adaptive-aim", *aim_, "on", "off");
         if (const char* o = firstGiven({{aimShare_.has_value(), "--adaptive-aim-share"},
                                         {aimPower_.has_value(), "--adaptive-aim-power"},
+                                        {openingsShare_.has_value(), "--adaptive-openings-share"},
                                         {aimShareMin_.has_value(), "--adaptive-aim-share-min"},
                                         {aimShareMax_.has_value(), "--adaptive-aim-share-max"}});
             o && !a.aim.enabled)
@@ -219,6 +222,7 @@ public:
         a.aim.shareMin = aimShareMin_.value_or(a.aim.shareMin);
         a.aim.shareMax = aimShareMax_.value_or(a.aim.shareMax);
         a.aim.power = aimPower_.value_or(a.aim.power);
+        a.openingsShare = openingsShare_.value_or(a.openingsShare);
         validateAdaptiveOptions(a);
     }
 
@@ -228,7 +232,7 @@ private:
     std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_, windowSplit_;
     std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_,
         guideMinGain_, guideMinContributions_,
-        windowSurvival_, windowLater_, aimPower_, aimShareMin_, aimShareMax_;
+        windowSurvival_, windowLater_, aimPower_, aimShareMin_, aimShareMax_, openingsShare_;
     std::optional<std::uint64_t> firstPass_;
     std::optional<std::uint32_t> maxCells_;
 };
@@ -279,6 +283,9 @@ void validateAdaptiveOptions(const AdaptiveOptions& o)
         throw Error(cat("--adaptive-prior ", o.priorPaths, ": must be in (0, 10^9] pseudo-paths"));
     if (o.maxCells < 1 || o.maxCells > (1u << 22))
         throw Error(cat("--adaptive-max-cells ", o.maxCells, ": must be in 1..4194304"));
+    if (!(o.openingsShare >= 0.0 && o.openingsShare < 1.0))
+        throw Error(cat("--adaptive-openings-share ", o.openingsShare, ": must be in [0, 1) (the light paths keep "
+                        "the light the walks cannot take)"));
     validateGuideOptions(o.guide);
     validateOpeningAimOptions(o.aim);
 }
@@ -288,7 +295,7 @@ std::unique_ptr<StrategyOptionBlock> makeAdaptiveOptionBlock() { return std::mak
 nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
 {
     const AdaptiveOptions& a = e.adaptive;
-    return {{"base", methodName(a.base)},
+    nlohmann::json j = {{"base", methodName(a.base)},
             {"initial_depth", a.initialDepth},
             {"max_depth", a.maxDepth},
             {"initial_sky_depth", a.initialSkyDepth},
@@ -318,6 +325,9 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
             {"aim", a.aim.enabled},
             {"aim_share", a.aim.cosineShare},
             {"aim_power", a.aim.power}};
+    if (a.openingsShare > 0.0)  // absent at 0: a checkpoint written before the option still resumes
+        j["openings_share"] = a.openingsShare;
+    return j;
 }
 
 }  // namespace fen

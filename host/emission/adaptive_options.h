@@ -42,6 +42,9 @@ struct AdaptiveOptions {
     GuideOptions guide;
     // The opening aim, learned on the same passes (DESIGN.md §3.5).
     OpeningAimOptions aim;
+    // The share of path indices that start on the aim's panes and walk outwards (DESIGN.md §3.6,
+    // kernels/lib/opening_walk.h); 0: none. Needs the aim.
+    double openingsShare = 0.0;
 };
 
 // The name --adaptive-estimate and the JSON give an estimate, and the estimate a name gives

@@ -382,7 +382,9 @@ public:
             {"sky_integral_cd_m2_sr", goniogram_ ? goniogram_->integral() : 0.0},
             {"disk_radius_m", radius_m_},
             {"guide", guide_->report()},
-            {"aim", aim_->report()}};
+            {"aim", aim_->report()},
+            // the share of paths started on the aimed panes (DESIGN.md §3.6; counters.opening_walks)
+            {"openings_share", opt_.openingsShare}};
         if (portalBase_) {
             j["disk_share"] = opt_.diskShare;
             j["portal_nodes"] = planes_.set.nodes;

@@ -7,7 +7,7 @@
 //   - kernels(): what the kernels are built with and bound to for it -- its emission program
 //     (kernels/emit_<strategy>.cl, put in the one emission wrapper), whether connect.cl gathers
 //     statistics for it and where, and the first-bounce guide shade.cl and connect.cl use;
-//   - bindEmitArgs(): its buffers, as emit_paths' arguments after (params, counters, paths);
+//   - bindEmitArgs(): its buffers, as emit_paths' last arguments (lib/emit_kernel.h);
 //   - passLimit() / afterPaths(): a learning strategy runs in passes; after each the renderer hands
 //     control back so that it can read its statistics and change its density;
 //   - imageEstimate(): the image so far, for a strategy that steers by pixel;

@@ -253,7 +253,7 @@ void writeLoopState(StateWriter& w, const LoopState& l)
     const BatchCounts& n = l.counts;
     w.u64s("loop.counts", {n.extensionRays, n.shadowRays, n.cameraRays, n.badContributions, n.overflows,
                            n.statsOverflows, n.maxBounceCuts, n.cameraGlassCuts, n.diffuseVertices,
-                           n.guidedVertices, n.splitBranches, n.windowCulls});
+                           n.guidedVertices, n.splitBranches, n.windowCulls, n.openingWalks, n.openingWalkRays});
     w.f64("loop.cut_flux", n.cutFlux);
 }
 
@@ -265,13 +265,16 @@ void readLoopState(StateReader& in, const LoopRules& rules, LoopState* out)
     l.done = static_cast<int>(in.u64("loop.done", static_cast<std::uint64_t>(rules.batches)));
     l.renderSeconds = in.f64("loop.render_seconds");
     l.calibrationSeconds = in.f64("loop.calibration_seconds");
-    const std::vector<std::uint64_t> c = in.u64s("loop.counts", 12);
-    if (c.size() != 12)
-        in.fail("loop.counts", "not 12 counters");
+    // 14 counters; 12 in a checkpoint written before the openings' walks (their two then 0)
+    const std::vector<std::uint64_t> c = in.u64s("loop.counts", 14);
+    if (c.size() != 12 && c.size() != 14)
+        in.fail("loop.counts", "not 14 counters");
     BatchCounts& n = l.counts;
     n.extensionRays = c[0], n.shadowRays = c[1], n.cameraRays = c[2], n.badContributions = c[3];
     n.overflows = c[4], n.statsOverflows = c[5], n.maxBounceCuts = c[6], n.cameraGlassCuts = c[7];
     n.diffuseVertices = c[8], n.guidedVertices = c[9], n.splitBranches = c[10], n.windowCulls = c[11];
+    if (c.size() == 14)
+        n.openingWalks = c[12], n.openingWalkRays = c[13];
     if (n.guidedVertices > n.diffuseVertices)
         in.fail("loop.counts", "more guided vertices than diffuse ones");
     n.cutFlux = in.f64("loop.cut_flux");

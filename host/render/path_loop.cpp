@@ -106,7 +106,9 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     const OpeningAim* aim = ek.aim;
     if (!aim)
         aim = (noAim_ = std::make_unique<OpeningAim>(ctx, OpeningAimOptions::off(), nullptr)).get();
-    strategy.bindEmitArgs(emit_, 3);  // checks the arity: the strategy's arguments are the last
+    // lib/emit_kernel.h: (params, counters, paths, the scene's buffers for the openings' walks, the aim),
+    // then the strategy's arguments, the last
+    strategy.bindEmitArgs(emit_, 10);  // checks the arity
     if (mode == KernelMode::Fused) {
         cl_uint a = 0;
         const cl::Buffer* fusedArgs[] = {&paramsBuf_, &counters_, &b.nodes(), &b.packets(),
@@ -122,9 +124,11 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
             fused_.setArg(a++, *buf);
         strategy.bindEmitArgs(fused_, a);  // the strategy's arguments last; checks the arity
     }
-    emit_.setArg(0, paramsBuf_);
-    emit_.setArg(1, counters_);
-    emit_.setArg(2, paths_);
+    cl_uint e = 0;
+    for (const cl::Buffer* buf : std::initializer_list<const cl::Buffer*>{
+             &paramsBuf_, &counters_, &paths_, &b.nodes(), &b.packets(), &scene.primMaterial(), &scene.materials(),
+             &scene.primUv(), &scene.texels(), &aim->aim()})
+        emit_.setArg(e++, *buf);
     ocl::setKernelArgs(intersect_, paths_, hits_, pool, b.nodes(), b.packets());
     ocl::setKernelArgs(shade_, paramsBuf_, paths_, splits_, hits_, scene.primMaterial(), scene.materials(),
                        scene.primUv(), scene.texels(), cameraBuf_, connections_, guide->params(), guide->tables(),
@@ -304,6 +308,8 @@ void PathLoop::endBatch(std::uint32_t batch, BatchCounts& counts, Team& team)
     counts.guidedVertices += ctr[FEN_CTR_GUIDED_VERTICES];
     counts.splitBranches += ctr[FEN_CTR_SPLIT_BRANCHES];
     counts.windowCulls += ctr[FEN_CTR_WINDOW_CULLS];
+    counts.openingWalks += ctr[FEN_CTR_OPENING_WALKS];
+    counts.openingWalkRays += ctr[FEN_CTR_OPENING_WALK_RAYS];
     counts.cutFlux += fixed128(ctr + FEN_CTR_CUT_FLUX_LO) / static_cast<double>(params_.fixed_scale);
 }
 

@@ -50,6 +50,7 @@ struct BatchCounts {
     std::uint64_t maxBounceCuts = 0, cameraGlassCuts = 0;
     std::uint64_t diffuseVertices = 0, guidedVertices = 0;  // scatters at diffuse vertices; of them, guided
     std::uint64_t splitBranches = 0, windowCulls = 0;       // branches splits made; paths windows culled
+    std::uint64_t openingWalks = 0, openingWalkRays = 0;    // paths given to the openings' walks; their rays
     double cutFlux = 0.0;  // lm x paths: the flux of the paths --max-bounces cut
 };
 

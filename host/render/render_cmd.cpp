@@ -332,6 +332,9 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     settings.sensors = &sensors;
     settings.noImage = noImage;
     settings.skyPatchMF = opt.annual.weather ? opt.annual.settings.mf : 0;
+    if (settings.skyPatchMF > 0 && emission.method == EmissionMethod::Adaptive && emission.adaptive.openingsShare > 0.0)
+        throw Error("--adaptive-openings-share: does not apply to an --annual study (the light a walk brings in has "
+                    "no sky patch of its own)");
     if (annualSkyVectors && opt.annual.settings.learnForYear)
         settings.skyPatchWeights = annualPatchWeights(*annualSkyVectors, opt.annual.settings.mf);
     for (const auto& reg : regions)
@@ -570,7 +573,11 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
                                                                : 0.0},
                      // branches made by splitting (--split, weight windows); paths the windows culled
                      {"split_branches", n.splitBranches},
-                     {"window_culls", n.windowCulls}};
+                     {"window_culls", n.windowCulls},
+                     // paths that started on the aimed panes, and the rays their walks outside traced
+                     // (--adaptive-openings-share; not in the extension rays)
+                     {"opening_walks", n.openingWalks},
+                     {"opening_walk_rays", n.openingWalkRays}};
     for (const auto& [name, e] : r.kernels)
         j["kernels"][name] = {{"launches", e.launches}, {"device_seconds", e.deviceSeconds}};
     j["png_exposure"] = exposure;

@@ -153,6 +153,8 @@ struct Renderer::Impl {
         p.sky_phi_nodes = skyTables.phiNodes;
         p.pool_size = pool;
         p.rr_depth = static_cast<std::uint32_t>(*settings.rouletteDepth);  // resolved: always set
+        if (st.emission.method == EmissionMethod::Adaptive)  // lib/opening_walk.h
+            p.openings_share = static_cast<float>(st.emission.adaptive.openingsShare);
         p.split_max = static_cast<std::uint32_t>(st.splitMax);
         p.split_weight = static_cast<float>(st.splitWeight * strategy->emittedFluxPerPath());
         if (!(p.split_weight > 0.0f))

@@ -91,6 +91,8 @@ static inline int emit_adaptive(const global RenderParams* params, const Adaptiv
     if (dirs.z == 0.0f) {
         dir = sun_direction(params, uv.x, uv.y);
         weight = e->params->sun_weight.xyz;
+        if (params->openings_share > 0.0f) /* lib/opening_walk.h */
+            p->flags |= FEN_PATH_SUN_KEPT;
     } else {
         /* uniform in the box of (s, t): cos(theta) = 1 - s, phi = 2 pi t (angles in units of pi
            for fen_sincospi) */

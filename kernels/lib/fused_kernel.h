@@ -13,7 +13,8 @@
  * image is bit-identical to the wavefront's (tests/render/fused_test.cpp).
  * Built with -DFEN_HAS_SENSORS, every segment adds its flux to the sensor cells it crosses
  * (lib/sensor.h), as shade.cl does in the wavefront.
- * Counters: emitted paths, extension and shadow rays, diffuse and guided vertices, added once per
+ * Paths start as the wavefront's do (lib/emit_kernel.h start_path, the openings' walks too).
+ * Counters: emitted paths, extension and shadow rays, diffuse and guided vertices, the walks, added once per
  * work-item at its end. The weight windows' arrivals are held in registers (lib/guide.h
  * HeldArrivals) and added when their entry is needed and at the end: integer sums, the same bytes
  * as the wavefront's adding each at once.
@@ -51,7 +52,8 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
     held_arrivals_init(&held);
     const Guide guide = {guide_params, guide_tables, guide_window_stats, &held, opening_aim, opening_prims, opening_stats};
     const SurfaceMaterials sm = {prim_material, materials, prim_uv, texels};
-    ulong emitted = 0, extension = 0, shadow = 0;
+    const OpeningScene os = {nodes, packets, sm, opening_aim};
+    ulong emitted = 0, extension = 0, shadow = 0, walks = 0, walk_rays = 0;
     VertexTally tally = {0, 0, 0, 0};
     for (;;) {
         const ulong first = atom_add(counters + FEN_CTR_NEXT_PATH, (ulong)FEN_FUSED_CHUNK);
@@ -60,12 +62,8 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
         const ulong last = min(first + (ulong)FEN_FUSED_CHUNK, params->path_end);
         for (ulong path = first; path < last; ++path) {
             PathState p;
-#if FEN_EMITTER_REJECTS
-            if (!FEN_EMITTER_EMIT(params, &emitter, path, &p))
+            if (!start_path(params, &emitter, &os, path, &p, &walks, &walk_rays))
                 continue;
-#else
-            FEN_EMITTER_EMIT(params, &emitter, path, &p);
-#endif
             path_tag_sky_patch(&p);
             ++emitted;
             SplitState split; /* read only under FEN_PATH_SPLIT, which shade_path() sets with it */
@@ -109,6 +107,10 @@ kernel void trace_fused(global const RenderParams* params, volatile global ulong
         atom_add(counters + FEN_CTR_SPLIT_BRANCHES, tally.split);
     if (tally.culled)
         atom_add(counters + FEN_CTR_WINDOW_CULLS, tally.culled);
+    if (walks)
+        atom_add(counters + FEN_CTR_OPENING_WALKS, walks);
+    if (walk_rays)
+        atom_add(counters + FEN_CTR_OPENING_WALK_RAYS, walk_rays);
 }
 
 #endif /* FEN_FUSED_KERNEL_H */

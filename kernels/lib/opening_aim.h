@@ -95,6 +95,19 @@ static inline void opening_deliver(volatile global ulong* stats, uint word, floa
     fixed_add128(stats + FEN_OPENING_STATS_WORDS * (ulong)(code - 1u) + FEN_OPENING_DELIVERED_LO, y * scale);
 }
 
+/* Whether glass primitive prim, crossed along dir, is a pane side the aim lists: a triangle of
+   positive weight on the side the path arrives from. With the openings' walks (lib/opening_walk.h)
+   the light a path brings in there is theirs. */
+static inline int opening_listed(global const OpeningAim* aim, uint prim, float3 dir)
+{
+    for (uint i = 0u; i < aim->triangles; ++i) {
+        const global AimTriangle* t = aim->tri + i;
+        if (as_uint(t->normal.w) == prim)
+            return (dot(dir, t->normal.xyz) < 0.0f ? t->e1.w : t->e2.w) > 0.0f;
+    }
+    return 0;
+}
+
 /* Triangle i's weight w_i seen from x on side n (0 where it cannot be aimed at); returns W = sum. */
 static inline float aim_weights(global const OpeningAim* aim, float3 x, float3 n, float* w)
 {

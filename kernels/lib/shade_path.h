@@ -136,7 +136,8 @@ static inline int scatter_aimed(global const RenderParams* params, const Guide* 
                                 VertexTally* t)
 {
     global const OpeningAim* aim = guide->aim;
-    if (aim->triangles == 0u || path_opening(p->flags) != 0u)
+    /* with the openings' walks the light the aim would send in is theirs (lib/opening_walk.h) */
+    if (aim->triangles == 0u || path_opening(p->flags) != 0u || params->openings_share > 0.0f)
         return -1;
     float w[FEN_AIM_MAX_TRIS];
     const float total = aim_weights(aim, x, n, w);
@@ -308,9 +309,15 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
         } else {
             next = dir;
             p->beta.xyz *= m->transmission.xyz;
+            /* with the openings' walks, a light path whose first glass is a listed pane side ends there
+               unless it is a sun path they cannot see: that light is theirs (lib/opening_walk.h) */
+            if (params->openings_share > 0.0f && path_opening(p->flags) == 0u && !(p->flags & FEN_PATH_SUN_KEPT) &&
+                opening_listed(guide->aim, prim, dir))
+                alive = 0;
             /* the first glass it passes: the opening it entered by, and its statistics */
-            p->flags = opening_enter(guide->aim, guide->opening_prims, guide->opening_stats, p->flags, prim, dir, ng,
-                                     p->beta.xyz, window_units(params, cam));
+            else
+                p->flags = opening_enter(guide->aim, guide->opening_prims, guide->opening_stats, p->flags, prim, dir,
+                                         ng, p->beta.xyz, window_units(params, cam));
         }
     } else {
         /* the side of the surface the light arrived at */
@@ -353,8 +360,11 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
             }
             alive = scatter_later(params, guide, p, albedo, x, n, u, &next, t);
         } else {
-            /* the first diffuse vertex: where a path may split, and where the guide steers */
+            /* the first diffuse vertex: where a path may split, and where the guide steers; a sun path
+               glass has not reflected is the openings' walks' from here (FEN_PATH_SUN_KEPT) */
             p->flags |= FEN_PATH_BRANCHED;
+            if (!(p->flags & FEN_PATH_REFLECTED))
+                p->flags &= ~FEN_PATH_SUN_KEPT;
             const uint slot = guide->params->slots ? guide_slot(guide, x, n) : 0u;
             /* weight windows: the path's weight against its slot's window w, where the slot has one */
             const float w = guide->params->slots ? guide_window(guide, slot) : 0.0f;

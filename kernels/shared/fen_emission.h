@@ -23,6 +23,9 @@
 /* A path's beta.w part with this bit set only feeds the statistics: connect.cl does not add it to
    the image (the portal strategy's estimate of the light its portals miss). */
 #define FEN_PART_ESTIMATE_ONLY 0x80000000u
+/* The part of a path that started on an opening's pane (lib/opening_walk.h): no emission cell, no
+   statistics; its light goes to the image. */
+#define FEN_PART_NONE 0x7fffffffu
 
 /* AdaptiveCell.region: the emission disk, or 1 + g for portal plane g. */
 #define FEN_REGION_DISK 0u

@@ -52,6 +52,7 @@
     X(RenderParams, sun_dir) \
     X(RenderParams, path_end) \
     X(RenderParams, seed)    \
+    X(RenderParams, openings_share) \
     X(RenderParams, fixed_scale) \
     X(RenderParams, stats_scale) \
     X(RenderParams, batch)   \

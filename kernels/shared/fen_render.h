@@ -27,6 +27,10 @@
 #define FEN_PATH_WAS_SPLIT 16u /* split once (at its first diffuse vertex or, by a weight window, later): never again */
 #define FEN_PATH_MIXED 32u      /* its first diffuse vertex drew from the opening aim's mixture (lib/opening_aim.h) */
 #define FEN_PATH_AIM_REGION 64u /* ... a direction where the aim's part of the density was the larger */
+/* With the openings' walks (RenderParams.openings_share > 0, lib/opening_walk.h): a sun path whose light
+   stays the light paths' even where it enters by a listed pane -- set at emission, cleared at its first
+   diffuse vertex unless glass reflected it before (no walk's next-event ray finds the sun by a mirror) */
+#define FEN_PATH_SUN_KEPT 128u
 /* Bits FEN_PATH_PATCH_SHIFT to 23: the sky patch the path started from, in a daylight-coefficient
    run (lib/sky_patch.h; set at emission, kept by every later step, which only sets and clears the
    bits below); bits 24..31: the opening it entered by (shared/fen_openings.h) */
@@ -51,7 +55,9 @@
 #define FEN_CTR_GUIDED_VERTICES 14  /* ... and of them, those whose direction the guide drew */
 #define FEN_CTR_SPLIT_BRANCHES 15   /* branches made by splitting (--split or weight windows) */
 #define FEN_CTR_WINDOW_CULLS 16     /* paths a weight window's roulette ended */
-#define FEN_CTR_COUNT 17
+#define FEN_CTR_OPENING_WALKS 17    /* path indices given to the openings' walks (lib/opening_walk.h) */
+#define FEN_CTR_OPENING_WALK_RAYS 18 /* rays their walks outside traced (not in the extension rays) */
+#define FEN_CTR_COUNT 19
 
 
 FEN_NS_BEGIN
@@ -179,7 +185,8 @@ typedef struct {
     fen_u32 sky_theta_nodes; /* the scene's sky, as the camera pass reads it */
     fen_u32 sky_phi_nodes;
     fen_u32 pool_size;
-    fen_u32 reserved0;       /* keeps the layout (the camera pass's samples are per pixel: Film) */
+    fen_f32 openings_share;  /* the share of path indices that start on the opening aim's panes
+                                (lib/opening_walk.h, adaptive only); 0: none */
     fen_u32 batch;           /* batch number, for the camera pass's random numbers */
     fen_u32 rr_depth;        /* Russian roulette from this surface interaction on (lib/shade_path.h) */
     fen_f32 split_weight;    /* a path splits at its first diffuse vertex into floor(Y(beta) / this) */

@@ -27,6 +27,8 @@
 #define FEN_RNG_PICK_LATTICE 6u /* host: each run's table-pick lattice offset (render/renderer.cpp) */
 #define FEN_RNG_DIRECT_SUN 7u   /* direct-sun pass: a point in the cell's stratum, a point on the sun's disc */
 #define FEN_RNG_WINDOW 8u       /* weight windows: the roulette of a path below its window */
+#define FEN_RNG_OPENING 9u      /* openings' walks: the part and pane side (depth 0); vertex i's roulette (1 + i) */
+#define FEN_RNG_WALK 10u        /* ... walk vertex i (depth i): a point on the sun's disc, the next direction */
 
 /* The stream word of a key (its second 32 bits, beside the seed): which family of counters. Also
    one list: light paths (lib/rng.h rng_path_bits), camera samples (rng_camera), and the host's

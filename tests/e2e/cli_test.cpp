@@ -571,6 +571,15 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
                 "--adaptive-aim-share-min 0: must be in (0, 1)");
     expectError(run("render " + good + out + " --adaptive-aim-share learned --adaptive-aim-share-max 0.2"), 1,
                 "--adaptive-aim-share-max 0.2: must be in [0.25, 1]");
+    // the openings' walks: a share in [0, 1), adaptive with its aim only
+    expectError(run("render " + good + out + " --adaptive-openings-share 1"), 1,
+                "--adaptive-openings-share 1: must be in [0, 1) (the light paths keep the light the walks cannot take)");
+    expectError(run("render " + good + out + " --adaptive-openings-share -0.1"), 1, "--adaptive-openings-share -0.1: must be in [0, 1)");
+    expectError(run("render " + good + out + " --adaptive-openings-share half"), 2, "--adaptive-openings-share = half");
+    expectError(run("render " + good + out + " --adaptive-aim off --adaptive-openings-share 0.9"), 1,
+                "--adaptive-openings-share: applies with the opening aim, which --adaptive-aim off turns off");
+    expectError(run("render " + good + out + " --method uniform --adaptive-openings-share 0.9"), 1,
+                "the --adaptive-* options apply to --method adaptive");
     // splitting: a count of branches, a positive weight unit -- never silently the default
     expectError(run("render " + good + out + " --split 0"), 1, "--split 0");
     expectError(run("render " + good + out + " --split -1"), 1, "--split -1");
@@ -844,6 +853,9 @@ TEST(CliAnnual, AYearOfTheShippedWeatherOnTheRoom)
     expectError(run("render " + scene + out + ann + " --udi 2000,100"), 1, "--udi '2000,100': expected LOW,HIGH");
     expectError(run("render " + scene + out + ann + " --da-lux -3"), 1, "--da-lux -3: must be an illuminance");
     expectError(run("render " + scene + out + ann + " --annual-learning some"), 1, "--annual-learning 'some': expected year or unit");
+    expectError(run("render " + scene + out + ann + " --adaptive-openings-share 0.5"), 1,
+                "--adaptive-openings-share: does not apply to an --annual study (the light a walk brings in has no sky "
+                "patch of its own)");
     expectError(run("render " + scene + out + ann + " --annual-sun fixed"), 1, "--annual-sun 'fixed': expected exact or patch");
     expectError(run("render " + scene + out + ann + " --annual-sun patch --annual-sun-points 4"), 1,
                 "--annual-sun-points: only with --annual-sun exact");

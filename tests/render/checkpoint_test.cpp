@@ -25,6 +25,7 @@ struct Case {
     EmissionMethod base;
     bool guide = false;
     bool window = false;
+    double openingsShare = 0.0;  // the openings' walks (lib/opening_walk.h)
 };
 
 RenderResult renderCase(ocl::Context& ctx, const Case& c, const std::string& checkpoint, const std::string& resume,
@@ -43,6 +44,7 @@ RenderResult renderCase(ocl::Context& ctx, const Case& c, const std::string& che
     s.emission.adaptive.guide.windowRule = GuideOptions::WindowRule::Moment;
     s.emission.adaptive.guide.windowMinVisits = 16.0;
     s.emission.adaptive.guide.windowMinSurvival = 0.25;
+    s.emission.adaptive.openingsShare = c.openingsShare;
     s.paths = 1u << 20;
     s.seed = seed;
     s.rois = {Roi{8, 8, 40, 28}};
@@ -95,6 +97,11 @@ TEST_P(Checkpoint, ResumedRenderIsBitIdentical)
     EXPECT_EQ(rest.counts.guidedVertices, whole.counts.guidedVertices);
     EXPECT_EQ(rest.counts.splitBranches, whole.counts.splitBranches);
     EXPECT_EQ(rest.counts.windowCulls, whole.counts.windowCulls);
+    EXPECT_EQ(rest.counts.openingWalks, whole.counts.openingWalks);
+    EXPECT_EQ(rest.counts.openingWalkRays, whole.counts.openingWalkRays);
+    if (c.openingsShare > 0.0) {
+        EXPECT_GT(whole.counts.openingWalks, 0u);
+    }
     if (c.window) {
         EXPECT_GT(whole.counts.splitBranches, 0u);
         EXPECT_EQ(rest.emission["guide"]["window_target"], whole.emission["guide"]["window_target"]);
@@ -119,7 +126,10 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"adaptive_portal", "inner_room.gltf", EmissionMethod::Adaptive, EmissionMethod::Portal},
                       Case{"adaptive_guide", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, true},
                       Case{"adaptive_window", "room.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform, true,
-                           true}),
+                           true},
+                      // the walks start once the aim lists the window, a pass or two in
+                      Case{"adaptive_openings", "courtyard.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform,
+                           true, true, 0.9}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 TEST(Checkpoint, AnotherRenderIsRefused)

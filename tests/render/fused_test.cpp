@@ -31,6 +31,7 @@ struct Case {
     bool window = false;
     bool windowEveryVertex = true;  // with windows: later vertices split too (the default)
     bool aimShareLearned = false;   // the opening aim's first-vertex share learned (else 0.75)
+    double openingsShare = 0.0;     // the share of paths that start on the aimed panes (lib/opening_walk.h)
 };
 
 RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
@@ -58,6 +59,7 @@ RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
     s.emission.adaptive.guide.minGain = 1.0;  // tables in use wherever anything was seen
     s.emission.adaptive.aim.learnShare = c.aimShareLearned;
     s.emission.adaptive.aim.cosineShare = 0.75;
+    s.emission.adaptive.openingsShare = c.openingsShare;
     s.rois = {Roi{0, 0, 48, 36}};
     Renderer r(ctx, scene, sky, scene.cameras.at(0), 48, 36, s);
     return r.render();
@@ -84,6 +86,14 @@ TEST_P(FusedKernel, BitIdenticalToTheWavefront)
     EXPECT_EQ(w.counts.guidedVertices, f.counts.guidedVertices);
     EXPECT_EQ(w.counts.splitBranches, f.counts.splitBranches);
     EXPECT_EQ(w.counts.windowCulls, f.counts.windowCulls);
+    EXPECT_EQ(w.counts.openingWalks, f.counts.openingWalks);
+    EXPECT_EQ(w.counts.openingWalkRays, f.counts.openingWalkRays);
+    if (c.openingsShare > 0.0) {
+        EXPECT_GT(f.counts.openingWalks, 0u) << "no path started on a pane";
+        EXPECT_GT(f.counts.openingWalkRays, f.counts.openingWalks) << "the walks traced too few rays";
+    } else {
+        EXPECT_EQ(f.counts.openingWalks, 0u);
+    }
     if (c.window) {
         EXPECT_GT(f.counts.splitBranches, 0u) << "the windows split nothing";
         EXPECT_GT(f.counts.windowCulls, 0u) << "the windows culled nothing";
@@ -163,7 +173,10 @@ INSTANTIATE_TEST_SUITE_P(
                            EmissionMethod::Uniform, 3, 1, 1.0, true, false, true},
                       // ... and its share at first vertices learned from the windows' sums
                       Case{"adaptive_aim_learned_courtyard", "courtyard.gltf", EmissionMethod::Adaptive,
-                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true, true, true}),
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true, true, true},
+                      // the openings' walks: paths from the panes, the light paths ending at them
+                      Case{"adaptive_openings_courtyard", "courtyard.gltf", EmissionMethod::Adaptive,
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true, true, false, 0.9}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
