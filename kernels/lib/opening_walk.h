@@ -79,31 +79,22 @@ static inline int opening_walk(global const RenderParams* params, const Sky* sky
         total += aim->tri[i].p0.w * (fmax(aim->tri[i].e1.w, 0.0f) + fmax(aim->tri[i].e2.w, 0.0f));
     if (!(total > 0.0f))
         return 0;
-    /* a triangle and side by area times the side's weight */
+    /* a triangle and side, 2 i + (0 front, 1 back), by area times the side's weight */
     float r = fen_u32_to_unit(pick.y) * total, chosen = 0.0f;
     uint k = 0u;
-    int front = 1;
-    for (uint i = 0u; i < aim->triangles; ++i) {
-        const global AimTriangle* t = aim->tri + i;
-        const float wf = t->p0.w * fmax(t->e1.w, 0.0f), wb = t->p0.w * fmax(t->e2.w, 0.0f);
-        if (wf > 0.0f) {
-            k = i;
-            front = 1;
-            chosen = wf;
-            if (r < wf)
+    for (uint j = 0u; j < 2u * aim->triangles; ++j) {
+        const global AimTriangle* tj = aim->tri + j / 2u;
+        const float wj = tj->p0.w * fmax((j & 1u) ? tj->e2.w : tj->e1.w, 0.0f);
+        if (wj > 0.0f) {
+            k = j;
+            chosen = wj;
+            if (r < wj)
                 break;
         }
-        r -= wf;
-        if (wb > 0.0f) {
-            k = i;
-            front = 0;
-            chosen = wb;
-            if (r < wb)
-                break;
-        }
-        r -= wb;
+        r -= wj;
     }
-    const global AimTriangle* t = aim->tri + k;
+    const global AimTriangle* t = aim->tri + k / 2u;
+    const int front = (k & 1u) == 0u;
     const RngBlock b = rng_path_bits(params->seed, p->path_lo, p->path_hi, 0, FEN_RNG_EMIT);
     const float su = sqrt(fen_u32_to_unit(b.x)), v2 = fen_u32_to_unit(b.y);
     float pane_offset_m;
