@@ -35,6 +35,9 @@
  *    mixture's density; it comes before the guide's table (the guide keeps its record). The first
  *    glass a path passes gives it its opening code (the aim's statistics), which a split keeps for
  *    every branch;
+ *  - the openings' walks (params->openings_share > 0; lib/opening_walk.h, DESIGN.md §3.6): a light
+ *    path whose first glass is a pane side the aim lists ends there unless FEN_PATH_SUN_KEPT (that
+ *    light is the walks'), and the aim's mixture is off;
  *  - a path reaching params->max_depth interactions dies (counted, with its flux: a bias that is
  *    reported; the default cap is high enough that only endless paths meet it).
  * Invariant: the result depends only on the path, its hit, its split state, the guide's tables and
@@ -314,8 +317,7 @@ static inline int shade_path(global const RenderParams* params, const Guide* gui
             if (params->openings_share > 0.0f && path_opening(p->flags) == 0u && !(p->flags & FEN_PATH_SUN_KEPT) &&
                 opening_listed(guide->aim, prim, dir))
                 alive = 0;
-            /* the first glass it passes: the opening it entered by, and its statistics */
-            else
+            else /* the first glass it passes: the opening it entered by, and its statistics */
                 p->flags = opening_enter(guide->aim, guide->opening_prims, guide->opening_stats, p->flags, prim, dir,
                                          ng, p->beta.xyz, window_units(params, cam));
         }
