@@ -472,6 +472,33 @@ TEST(CliCompare, ChartsAndTableFromEqualTimeRenders)
     EXPECT_NE(slurp(dir + "/compare.csv").find("method,batches,paths,seconds"), std::string::npos);
 }
 
+// The openings' walks (--adaptive-openings-share, DESIGN.md §3.6) with a work plane: the floor's
+// mean illuminance within 4 sigma of adaptive without them (the walks' paths teach no emission
+// cell and the sensors take their flux as any light path's), and the JSON counts the walks.
+TEST(CliRender, OpeningWalksKeepTheWorkPlanesIlluminance)
+{
+    const std::string dir = test::tempDir("cli-render-opening-walks");
+    const std::string render = "render " + std::string(FEN_SCENES_DIR) +
+                               "/courtyard.gltf --work-plane floor --sensor-spacing 0.5 --paths 2000000 --width 32 "
+                               "--no-progress --out " + dir;
+    const CliRun without = run(render + "/without.exr");
+    ASSERT_EQ(without.status, 0) << without.err;
+    const CliRun with = run(render + "/with.exr --adaptive-openings-share 0.9");
+    ASSERT_EQ(with.status, 0) << with.err;
+    const auto a = nlohmann::json::parse(slurp(dir + "/without.json"));
+    const auto b = nlohmann::json::parse(slurp(dir + "/with.json"));
+    const auto& pa = a["sensors"]["workplane"];
+    const auto& pb = b["sensors"]["workplane"];
+    const double ma = pa["mean_lux"].get<double>(), mb = pb["mean_lux"].get<double>();
+    const double sa = pa["mean_lux_std_err"].get<double>(), sb = pb["mean_lux_std_err"].get<double>();
+    EXPECT_LT(std::abs(ma - mb), 4.0 * std::sqrt(sa * sa + sb * sb)) << ma << " +- " << sa << " against " << mb
+                                                                      << " +- " << sb;
+    EXPECT_GT(mb, 0.0);
+    EXPECT_EQ(a["counters"]["opening_walks"].get<double>(), 0.0);
+    EXPECT_GT(b["counters"]["opening_walks"].get<double>(), 1e6);
+    EXPECT_DOUBLE_EQ(b["emission"]["openings_share"].get<double>(), 0.9);
+}
+
 TEST(CliRender, AdaptiveBadOptionsAreOneLine)
 {
     const std::string dir = test::tempDir("cli-render-adaptive-bad");
