@@ -335,6 +335,9 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     if (settings.skyPatchMF > 0 && emission.method == EmissionMethod::Adaptive && emission.adaptive.openingsShare > 0.0)
         throw Error("--adaptive-openings-share: does not apply to an --annual study (the light a walk brings in has "
                     "no sky patch of its own)");
+    if (noImage && emission.method == EmissionMethod::Adaptive && emission.adaptive.openingsShare > 0.0)
+        throw Error("--adaptive-openings-share: needs an image (the walks start on the panes the opening aim learns "
+                    "from what reaches the camera), and --no-image renders none");
     if (annualSkyVectors && opt.annual.settings.learnForYear)
         settings.skyPatchWeights = annualPatchWeights(*annualSkyVectors, opt.annual.settings.mf);
     for (const auto& reg : regions)

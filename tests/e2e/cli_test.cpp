@@ -497,6 +497,11 @@ TEST(CliRender, OpeningWalksKeepTheWorkPlanesIlluminance)
     EXPECT_EQ(a["counters"]["opening_walks"].get<double>(), 0.0);
     EXPECT_GT(b["counters"]["opening_walks"].get<double>(), 1e6);
     EXPECT_DOUBLE_EQ(b["emission"]["openings_share"].get<double>(), 0.9);
+    // with sensors alone the aim learns nothing to start the walks from: said, not silently ignored
+    expectError(run("render " + std::string(FEN_SCENES_DIR) + "/courtyard.gltf --work-plane floor --no-image "
+                    "--paths 1000 --no-progress --adaptive-openings-share 0.9 --out " + dir + "/s"),
+                1, "--adaptive-openings-share: needs an image (the walks start on the panes the opening aim learns from "
+                   "what reaches the camera), and --no-image renders none");
 }
 
 TEST(CliRender, AdaptiveBadOptionsAreOneLine)
