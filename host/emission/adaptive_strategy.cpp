@@ -203,6 +203,7 @@ public:
         k.statsPixelScale = opt_.relativeTarget ? &pixelScale_ : nullptr;
         k.guide = guide_.get();  // off: slots 0, placeholders
         k.aim = aim_.get();      // off or no glass: nothing aimed at
+        k.openingWalks = opt_.openingsShare > 0.0;
         return k;
     }
     std::vector<SummedBuffer> summedBuffers() const override

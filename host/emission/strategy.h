@@ -84,6 +84,9 @@ struct EmissionKernels {
     const FirstBounceGuide* guide = nullptr;
     // The opening aim it learns (perhaps off: placeholders), or nullptr: nothing is aimed at.
     const OpeningAim* aim = nullptr;
+    // Paths start on the aim's panes too (--adaptive-openings-share > 0): the emission programs are
+    // built with -DFEN_OPENING_WALKS=1 (lib/emit_kernel.h), and without the walk's code otherwise.
+    bool openingWalks = false;
 };
 
 class EmissionStrategy {

@@ -66,6 +66,8 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     auto emitDefs = defs;
     if (sensors.patchMF() > 0)
         emitDefs.push_back("FEN_SKY_PATCH_MF=" + std::to_string(sensors.patchMF()));
+    if (ek.openingWalks)  // the openings' walks' code only where they run (lib/emit_kernel.h)
+        emitDefs.push_back("FEN_OPENING_WALKS=1");
     auto shadeDefs = defs;
     if (sensors.any())
         shadeDefs.push_back("FEN_HAS_SENSORS=1");
@@ -84,6 +86,8 @@ PathLoop::PathLoop(ocl::Context& ctx, const DeviceScene& scene, EmissionStrategy
     if (mode == KernelMode::Fused) {
         auto fusedDefs = connectDefs;
         fusedDefs.push_back("FEN_FUSED=1");
+        if (ek.openingWalks)
+            fusedDefs.push_back("FEN_OPENING_WALKS=1");
         if (sensors.patchMF() > 0)
             fusedDefs.push_back("FEN_SKY_PATCH_MF=" + std::to_string(sensors.patchMF()));
         if (sensors.any())

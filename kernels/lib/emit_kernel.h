@@ -12,10 +12,12 @@
  * FEN_EMITTER_REJECTS: whether the strategy may reject a candidate (then the count of started
  * paths waits for it) or always emits (then the count comes first and the emission runs after the
  * work-group's last barrier: on PoCL nothing of it is kept across a barrier).
- * FEN_EMITTER_OPENINGS (1 for adaptive): a share RenderParams.openings_share of the indices start
- * on the opening aim's panes instead (lib/opening_walk.h), for which every strategy's kernel takes
- * the scene's buffers (nodes to opening_aim) after `paths`; FEN_CTR_OPENING_WALKS and
- * FEN_CTR_OPENING_WALK_RAYS count them.
+ * FEN_EMITTER_OPENINGS (1 for adaptive), built with -DFEN_OPENING_WALKS=1 (the host, when
+ * --adaptive-openings-share > 0): a share RenderParams.openings_share of the indices start on the
+ * opening aim's panes instead (lib/opening_walk.h), for which every strategy's kernel takes the
+ * scene's buffers (nodes to opening_aim) after `paths`; FEN_CTR_OPENING_WALKS and
+ * FEN_CTR_OPENING_WALK_RAYS count them. Without the define the walk's code (a BVH traversal) is not
+ * compiled into the emission kernel at all.
  * Why one file per strategy rather than one file with #if: which headers come first decides how
  * the code after them is compiled (lib/tri_packet.h turns floating-point contraction off for the
  * rest of the program), and a strategy's images must not change because another strategy's
@@ -31,6 +33,11 @@
 #ifndef FEN_EMITTER_OPENINGS
 #define FEN_EMITTER_OPENINGS 0
 #endif
+#if FEN_EMITTER_OPENINGS && defined(FEN_OPENING_WALKS)
+#define FEN_WALKS 1
+#else
+#define FEN_WALKS 0
+#endif
 
 /* Starts path `path` in *p: on an opening's pane (lib/opening_walk.h; *walks, *walk_rays count them)
    or by the strategy, whose paths then weigh 1 / (1 - share). Returns 0 when none starts (a rejected
@@ -38,7 +45,7 @@
 static inline int start_path(global const RenderParams* params, const FEN_EMITTER_TYPE* emitter,
                              const OpeningScene* os, ulong path, PathState* p, ulong* walks, ulong* walk_rays)
 {
-#if FEN_EMITTER_OPENINGS
+#if FEN_WALKS
     RngBlock pick;
     if (opening_walk_picked(params, os->aim, path, &pick)) {
         *walks += 1;
@@ -55,7 +62,7 @@ static inline int start_path(global const RenderParams* params, const FEN_EMITTE
 #else
     FEN_EMITTER_EMIT(params, emitter, path, p);
 #endif
-#if FEN_EMITTER_OPENINGS
+#if FEN_WALKS
     if (params->openings_share > 0.0f && os->aim->triangles)
         p->beta.xyz *= 1.0f / (1.0f - params->openings_share);
 #endif
@@ -88,7 +95,7 @@ kernel void emit_paths(global const RenderParams* params, volatile global ulong*
         }
     }
     group_count_add(counters + FEN_CTR_EMITTED, (uint)emitted, &group_count);
-#if FEN_EMITTER_OPENINGS
+#if FEN_WALKS
     group_count_add(counters + FEN_CTR_OPENING_WALKS, (uint)walks, &group_count);
     group_count_add(counters + FEN_CTR_OPENING_WALK_RAYS, (uint)walk_rays, &group_count);
 #endif
