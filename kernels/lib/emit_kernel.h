@@ -63,7 +63,7 @@ static inline int start_path(global const RenderParams* params, const FEN_EMITTE
     FEN_EMITTER_EMIT(params, emitter, path, p);
 #endif
 #if FEN_WALKS
-    if (params->openings_share > 0.0f && os->aim->triangles)
+    if (opening_walks_on(params, os->aim))
         p->beta.xyz *= 1.0f / (1.0f - params->openings_share);
 #endif
     return 1;

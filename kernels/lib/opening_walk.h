@@ -49,11 +49,17 @@ typedef struct {
     global const OpeningAim* aim;
 } OpeningScene;
 
+/* Whether the walks run now: a share is asked for and the aim lists panes (none in the first pass). */
+static inline int opening_walks_on(global const RenderParams* params, global const OpeningAim* aim)
+{
+    return params->openings_share > 0.0f && aim->triangles != 0u;
+}
+
 /* Whether path `path` is one of the walks'. */
 static inline int opening_walk_picked(global const RenderParams* params, global const OpeningAim* aim, ulong path,
                                       RngBlock* pick)
 {
-    if (!(params->openings_share > 0.0f) || aim->triangles == 0u)
+    if (!opening_walks_on(params, aim))
         return 0;
     *pick = rng_path_bits(params->seed, (uint)path, (uint)(path >> 32), 0, FEN_RNG_OPENING);
     return fen_u32_to_unit(pick->x) < params->openings_share;
