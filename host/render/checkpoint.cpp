@@ -268,7 +268,7 @@ void readLoopState(StateReader& in, const LoopRules& rules, LoopState* out)
     // 14 counters; 12 in a checkpoint written before the openings' walks (their two then 0)
     const std::vector<std::uint64_t> c = in.u64s("loop.counts", 14);
     if (c.size() != 12 && c.size() != 14)
-        in.fail("loop.counts", "not 14 counters");
+        in.fail("loop.counts", "neither 14 counters nor the 12 of a checkpoint before the openings' walks");
     BatchCounts& n = l.counts;
     n.extensionRays = c[0], n.shadowRays = c[1], n.cameraRays = c[2], n.badContributions = c[3];
     n.overflows = c[4], n.statsOverflows = c[5], n.maxBounceCuts = c[6], n.cameraGlassCuts = c[7];

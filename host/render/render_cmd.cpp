@@ -332,10 +332,11 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     settings.sensors = &sensors;
     settings.noImage = noImage;
     settings.skyPatchMF = opt.annual.weather ? opt.annual.settings.mf : 0;
-    if (settings.skyPatchMF > 0 && emission.method == EmissionMethod::Adaptive && emission.adaptive.openingsShare > 0.0)
+    const bool openingWalks = emission.method == EmissionMethod::Adaptive && emission.adaptive.openingsShare > 0.0;
+    if (openingWalks && settings.skyPatchMF > 0)
         throw Error("--adaptive-openings-share: does not apply to an --annual study (the light a walk brings in has "
                     "no sky patch of its own)");
-    if (noImage && emission.method == EmissionMethod::Adaptive && emission.adaptive.openingsShare > 0.0)
+    if (openingWalks && noImage)
         throw Error("--adaptive-openings-share: needs an image (the walks start on the panes the opening aim learns "
                     "from what reaches the camera), and --no-image renders none");
     if (annualSkyVectors && opt.annual.settings.learnForYear)
