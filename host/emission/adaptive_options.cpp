@@ -108,7 +108,9 @@ public:
         render.add_option("--adaptive-aim-power", aimPower_,
                           "With adaptive --adaptive-aim on: weigh each opening by its learned worth to this power, (0, 2] (default 1)");
         render.add_option("--adaptive-openings-share", openingsShare_,
-                          "With adaptive --adaptive-aim on: the share of paths that start on the aimed panes and take the light reflected outside by walking outwards, [0, 1) (default 0: none; 0.9 for a room lit by a sunlit facing wall)");
+                          "With adaptive --adaptive-aim on: the share of paths that start on the aimed panes and take the light reflected outside by walking outwards, [0, 1), or auto: chosen by the render from a baseline and a trial pass (default 0: none; 0.9 for a room lit by a sunlit facing wall)");
+        render.add_option("--adaptive-openings-race-paths", openingsRacePaths_,
+                          "With adaptive --adaptive-openings-share auto: the least pass, in paths, whose halves race share 0 against the trial's, 2^16..2^40 (default 4194304)");
         render.add_option("--adaptive-guide-memory", guideMemory_,
                           "With adaptive --adaptive-guide on: MiB of device memory for the guide's trees (default 256)");
         render.add_option("--adaptive-target", target_,
@@ -132,7 +134,7 @@ public:
                            target_ || guide_ || guideShare_ || guideVoxels_ || guideDepth_ || guideSplit_ || guideSpaceSplit_ || guideMemory_ || guideMinGain_ ||
                            guideMinContributions_ ||
                            guideVertices_ || window_ || windowSplit_ || windowSurvival_ || windowVertices_ || windowLater_ || aim_ ||
-                           aimShare_ || aimPower_ || aimShareMin_ || aimShareMax_ || openingsShare_;
+                           aimShare_ || aimPower_ || aimShareMin_ || aimShareMax_ || openingsShare_ || openingsRacePaths_;
         if (tuned && !inUse)
             throw Error("the --adaptive-* options apply to --method adaptive");
         if (!inUse)
@@ -222,18 +224,33 @@ public:
         a.aim.shareMin = aimShareMin_.value_or(a.aim.shareMin);
         a.aim.shareMax = aimShareMax_.value_or(a.aim.shareMax);
         a.aim.power = aimPower_.value_or(a.aim.power);
-        a.openingsShare = openingsShare_.value_or(a.openingsShare);
+        if (openingsShare_ && *openingsShare_ == "auto") {
+            a.openingsAuto = true;
+            a.openingsShare = 0.0;
+        } else if (openingsShare_) {
+            const std::optional<double> v = parseWholeNumber(*openingsShare_);
+            if (!v)
+                throw Error(cat("--adaptive-openings-share '", printable(*openingsShare_, 40),
+                                "': expected auto or a number in [0, 1)"));
+            a.openingsAuto = false;
+            a.openingsShare = *v;
+        }
+        if (openingsRacePaths_ && !a.openingsAuto)
+            throw Error("--adaptive-openings-race-paths: applies with --adaptive-openings-share auto");
+        a.openingsRacePaths = openingsRacePaths_.value_or(a.openingsRacePaths);
+        if (!a.aim.enabled)
+            a.openingsAuto = false;  // a default of auto: no aim, no panes to start on
         validateAdaptiveOptions(a);
     }
 
 private:
     std::optional<std::string> base_, estimate_, weights_, target_, guide_, guideVertices_, window_, windowVertices_, aim_,
-        aimShare_;
+        aimShare_, openingsShare_;
     std::optional<int> initialDepth_, maxDepth_, initialSkyDepth_, maxSkyDepth_, guideVoxels_, guideDepth_, windowSplit_;
     std::optional<double> defensive_, diskShare_, split_, prior_, guideShare_, guideSplit_, guideSpaceSplit_, guideMemory_,
         guideMinGain_, guideMinContributions_,
-        windowSurvival_, windowLater_, aimPower_, aimShareMin_, aimShareMax_, openingsShare_;
-    std::optional<std::uint64_t> firstPass_;
+        windowSurvival_, windowLater_, aimPower_, aimShareMin_, aimShareMax_;
+    std::optional<std::uint64_t> firstPass_, openingsRacePaths_;
     std::optional<std::uint32_t> maxCells_;
 };
 
@@ -283,6 +300,8 @@ void validateAdaptiveOptions(const AdaptiveOptions& o)
         throw Error(cat("--adaptive-prior ", o.priorPaths, ": must be in (0, 10^9] pseudo-paths"));
     if (o.maxCells < 1 || o.maxCells > (1u << 22))
         throw Error(cat("--adaptive-max-cells ", o.maxCells, ": must be in 1..4194304"));
+    if (o.openingsRacePaths < (1u << 16) || o.openingsRacePaths > (std::uint64_t{1} << 40))
+        throw Error(cat("--adaptive-openings-race-paths ", o.openingsRacePaths, ": must be in 65536..2^40 paths"));
     if (!(o.openingsShare >= 0.0 && o.openingsShare < 1.0))
         throw Error(cat("--adaptive-openings-share ", o.openingsShare, ": must be in [0, 1) (the light paths keep "
                         "the light the walks cannot take)"));
@@ -325,7 +344,11 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
             {"aim", a.aim.enabled},
             {"aim_share", a.aim.cosineShare},
             {"aim_power", a.aim.power}};
-    if (a.openingsShare > 0.0)  // absent at 0: a checkpoint written before the option still resumes
+    if (a.openingsAuto) {  // absent at 0: a checkpoint written before the option still resumes
+        j["openings_share"] = "auto";
+        j["openings_race_paths"] = a.openingsRacePaths;
+    }
+    else if (a.openingsShare > 0.0)
         j["openings_share"] = a.openingsShare;
     return j;
 }

@@ -45,6 +45,11 @@ struct AdaptiveOptions {
     // The share of path indices that start on the aim's panes and walk outwards (DESIGN.md §3.6,
     // kernels/lib/opening_walk.h); 0: none. Needs the aim.
     double openingsShare = 0.0;
+    // The share chosen by the render itself from a baseline and a trial pass (--adaptive-openings-share
+    // auto; host/emission/openings_race.h); openingsShare is then unused.
+    bool openingsAuto = false;
+    // ... the least pass, in paths, that it races (--adaptive-openings-race-paths).
+    std::uint64_t openingsRacePaths = std::uint64_t{1} << 22;
 };
 
 // The name --adaptive-estimate and the JSON give an estimate, and the estimate a name gives

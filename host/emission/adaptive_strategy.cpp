@@ -12,6 +12,7 @@
 
 #include "bvh_build.h"
 #include "cl/launch.h"
+#include "emission/openings_race.h"
 #include "emission/adaptive_grid.h"
 #include "emission/adaptive_options.h"
 #include "emission/emission_sphere.h"
@@ -203,14 +204,14 @@ public:
         k.statsPixelScale = opt_.relativeTarget ? &pixelScale_ : nullptr;
         k.guide = guide_.get();  // off: slots 0, placeholders
         k.aim = aim_.get();      // off or no glass: nothing aimed at
-        k.openingWalks = opt_.openingsShare > 0.0;
+        k.openingWalks = opt_.openingsShare > 0.0 || opt_.openingsAuto;
         return k;
     }
     std::vector<SummedBuffer> summedBuffers() const override
     {
         static_assert(FEN_CELL_SUM_LO == 0 && FEN_CELL_SUMSQ_LO == 2 && FEN_CELL_CONNECTIONS == 4 &&
                           FEN_CELL_STATS_WORDS == 5, "a cell's statistics: two 128-bit sums and a count");
-        return {{&stats_, FEN_CELL_PARTS * grid_->cells().size(), {2, 2, 1}}, guide_->summed(), guide_->windowSummed(),
+        return {{&stats_, statsParts(), {2, 2, 1}}, guide_->summed(), guide_->windowSummed(),
                 aim_->summed()};
     }
     void bindEmitArgs(cl::Kernel& emit, cl_uint first) override
@@ -262,17 +263,34 @@ public:
             }
         ctx_.queue().enqueueWriteBuffer(pixelScale_, CL_TRUE, 0, pixelScaleHost_.size() * 4, pixelScaleHost_.data());
     }
-    std::uint64_t passLimit() const override { return passSize_ - passPaths_; }
+    std::uint64_t passLimit(std::uint64_t batchLeft) const override
+    {
+        // a raced pass stops at its half (host/emission/openings_race.h), then goes on at the trial's
+        // share: half of what the pass will run, its size or the batch's rest, whichever ends first
+        if (race_.racing() && !race_.halfDone()) {
+            if (passPaths_ == 0)
+                raceHalf_ = race_.half(std::min(passSize_, batchLeft));
+            if (passPaths_ < raceHalf_)
+                return raceHalf_ - passPaths_;
+        }
+        return passSize_ - passPaths_;
+    }
 
-    void afterPaths(std::uint64_t paths, bool batchEnd) override
+    double openingsShare() const override { return race_.share(); }
+
+    void afterPaths(std::uint64_t paths, std::uint64_t rays, bool batchEnd) override
     {
         if (paths == 0)
             return;
         passPaths_ += paths;
-        if (passPaths_ < passSize_ && !batchEnd)
+        passRays_ += rays;
+        if (passPaths_ < passSize_ && !batchEnd) {
+            if (race_.racing() && !race_.halfDone() && raceHalf_ > 0 && passPaths_ >= raceHalf_)
+                race_.afterHalf(passMoments());
             return;
+        }
         const auto t0 = std::chrono::steady_clock::now();
-        learn();
+        const RacePass race = learn();
         if (batchEnd) {
             double paths = 0.0, varianceTimesPaths = 0.0;
             for (const auto& [n, v] : batchPasses_) {
@@ -286,7 +304,13 @@ public:
         }
         ++passes_;
         passPaths_ = 0;
+        passRays_ = 0;
         passSize_ = std::min<std::uint64_t>(passSize_ * 2, std::uint64_t{1} << 62);
+        if (std::getenv("FEN_ADAPTIVE_LOG"))
+            std::fprintf(stderr, "  race: %.0f paths, %.4f rays/path, second moment/path light %.4g walks %.4g, share %.3g\n",
+                         race.paths, race.rays / race.paths, race.lightSumSq / race.paths, race.walkSumSq / race.paths,
+                         race_.share());
+        race_.afterPass(race, aim_->aimedTriangles() > 0, passSize_);
         learnSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
 
@@ -301,6 +325,8 @@ public:
             guide_->save(w);
         if (opt_.aim.enabled)
             aim_->save(w);
+        if (opt_.openingsAuto)  // absent otherwise: a checkpoint without the race still resumes
+            race_.save(w);
     }
     void loadState(StateReader& r) override
     {
@@ -314,13 +340,15 @@ public:
         lastBatchWeight_ = w[0];
         learnSeconds_ = w[1];
         batchWeights_ = r.f64s("adaptive.batch_weights", 1u << 20);
-        passPaths_ = 0;
+        passPaths_ = passRays_ = 0;
         batchPasses_.clear();
-        ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, grid_->cells().size() * FEN_CELL_PARTS * FEN_CELL_STATS_WORDS * 8);
+        ctx_.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, statsParts() * FEN_CELL_STATS_WORDS * 8);
         if (opt_.guide.enabled)
             guide_->load(r);
         if (opt_.aim.enabled)
             aim_->load(r);
+        if (opt_.openingsAuto)
+            race_.load(r);
         upload();
     }
 
@@ -384,8 +412,11 @@ public:
             {"disk_radius_m", radius_m_},
             {"guide", guide_->report()},
             {"aim", aim_->report()},
-            // the share of paths started on the aimed panes (DESIGN.md §3.6; counters.opening_walks)
-            {"openings_share", opt_.openingsShare}};
+            // the share of paths started on the aimed panes (DESIGN.md §3.6; counters.opening_walks):
+            // the last pass's, and how it was chosen (host/emission/openings_race.h)
+            {"openings_share", race_.share()},
+            {"openings_share_auto", opt_.openingsAuto},
+            {"openings_race", race_.report()}};
         if (portalBase_) {
             j["disk_share"] = opt_.diskShare;
             j["portal_nodes"] = planes_.set.nodes;
@@ -446,9 +477,11 @@ private:
         add(maxCells * sizeof(dev::AdaptiveCell));
         cellAlias_ = c.buffer(CL_MEM_READ_ONLY, columns * 8, "adaptive cell table");
         add(columns * 8);
-        stats_ = c.buffer(CL_MEM_READ_WRITE, maxCells * FEN_CELL_PARTS * FEN_CELL_STATS_WORDS * 8, "adaptive cell statistics");
-        add(maxCells * FEN_CELL_PARTS * FEN_CELL_STATS_WORDS * 8);
-        c.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, maxCells * FEN_CELL_PARTS * FEN_CELL_STATS_WORDS * 8);
+        // the cells' parts, then the openings' walks' (shared/fen_emission.h FEN_WALK_PARTS)
+        const std::size_t statsBytes = (maxCells * FEN_CELL_PARTS + FEN_WALK_PARTS) * FEN_CELL_STATS_WORDS * 8;
+        stats_ = c.buffer(CL_MEM_READ_WRITE, statsBytes, "adaptive cell statistics");
+        add(statsBytes);
+        c.queue().enqueueFillBuffer(stats_, cl_ulong(0), 0, statsBytes);
         const auto upload = [&](const auto& v, const char* what) {
             add(v.size() * sizeof(v[0]));
             return c.buffer(CL_MEM_READ_ONLY, v.size() * sizeof(v[0]), what, v.empty() ? nullptr : v.data());
@@ -506,6 +539,7 @@ private:
         nextVariance_ = baseVariance > 0.0 ? grid_->predictedVariance(realised_) / baseVariance : 1.0;
         deviceParams_.cell_alias_shift = table.aliasShift;
         deviceParams_.cells = static_cast<std::uint32_t>(cells.size());
+        deviceParams_.walk_part = static_cast<std::uint32_t>(FEN_CELL_PARTS * cells.size());
         auto& q = ctx_.queue();
         q.enqueueWriteBuffer(cellBuf_, CL_FALSE, 0, hostCells_.size() * sizeof(dev::AdaptiveCell), hostCells_.data());
         q.enqueueWriteBuffer(cellAlias_, CL_FALSE, 0, hostAlias_.size() * 4, hostAlias_.data());
@@ -514,10 +548,32 @@ private:
 
     // Reads the pass's statistics into the grid, learns, uploads the new grid, clears the counts.
     // Records the pass's variance relative to the base density's, as predicted before it ran.
-    void learn()
+    // The statistics parts in use: the cells', then the walks'.
+    std::size_t statsParts() const { return FEN_CELL_PARTS * grid_->cells().size() + FEN_WALK_PARTS; }
+
+    // What the race measures of the pass so far: paths, rays, and the squares of the contributions
+    // as the image got them (not over the base), the light paths' and the walks'.
+    RacePass passMoments()
+    {
+        std::vector<std::uint64_t> raw(statsParts() * FEN_CELL_STATS_WORDS);
+        ctx_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
+        return passMoments(raw);
+    }
+    RacePass passMoments(const std::vector<std::uint64_t>& raw) const
     {
         const std::size_t n = FEN_CELL_PARTS * grid_->cells().size();
-        std::vector<std::uint64_t> raw(n * FEN_CELL_STATS_WORDS);
+        RacePass race{static_cast<double>(passPaths_), static_cast<double>(passRays_), 0.0, 0.0};
+        for (std::size_t i = 0; i < statsParts(); ++i)
+            (i < n ? race.lightSumSq : race.walkSumSq) +=
+                fixed128(raw.data() + FEN_CELL_STATS_WORDS * i + FEN_CELL_SUMSQ_LO) / statsScale_;
+        return race;
+    }
+
+    // Learns from the pass just ended; returns what the race measures of it.
+    RacePass learn()
+    {
+        const std::size_t n = FEN_CELL_PARTS * grid_->cells().size();
+        std::vector<std::uint64_t> raw(statsParts() * FEN_CELL_STATS_WORDS);
         auto& q = ctx_.queue();
         q.enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
         std::vector<GridCell::Stats> parts(n);
@@ -535,6 +591,7 @@ private:
             parts[i].connections = static_cast<double>(w[FEN_CELL_CONNECTIONS]);
         }
         grid_->addPass(parts);
+        const RacePass race = passMoments(raw);
         const double variance = nextVariance_;
         batchPasses_.push_back({static_cast<double>(passPaths_), variance});
         double passConn = 0.0;
@@ -545,12 +602,13 @@ private:
             std::fprintf(stderr, "pass %d: %llu paths, %.4f contributions/path, variance %.3g, %zu splits -> %zu cells\n",
                          passes_, static_cast<unsigned long long>(passPaths_), passConn / passPaths_, variance, splits,
                          grid_->cells().size());
-        q.enqueueFillBuffer(stats_, cl_ulong(0), 0, FEN_CELL_PARTS * grid_->cells().size() * FEN_CELL_STATS_WORDS * 8);
+        q.enqueueFillBuffer(stats_, cl_ulong(0), 0, statsParts() * FEN_CELL_STATS_WORDS * 8);
         upload();
         guide_->learn();
         const FirstBounceGuide::AimSums sums = guide_->passAimSums();
         aim_->learnShare(sums.mixed, sums.aimed);
         aim_->learn();
+        return race;
     }
 
     ocl::Context& ctx_;
@@ -577,7 +635,9 @@ private:
     std::vector<float> pixelScaleHost_;
     int filmWidth_ = 0, filmHeight_ = 0;
     std::size_t deviceBytes_ = 0;
-    std::uint64_t passSize_ = 0, passPaths_ = 0;
+    std::uint64_t passSize_ = 0, passPaths_ = 0, passRays_ = 0;
+    OpeningsRace race_{opt_.openingsAuto, opt_.openingsShare, opt_.openingsRacePaths};  // the walks' share, pass by pass
+    mutable std::uint64_t raceHalf_ = 0;  // the raced pass's first half: set when it starts (passLimit)
     int passes_ = 0;
     double learnSeconds_ = 0.0;
     double nextVariance_ = 1.0;       // variance per path of the pass about to run over the base's, predicted

@@ -109,7 +109,7 @@ public:
         return complement_ > 0.0 ? std::max(portals, uniform_.sunFlux + uniform_.skyFlux) : portals;
     }
     // The complement's share of the light that reached the camera in the batch just ended.
-    void afterPaths(std::uint64_t, bool batchEnd) override
+    void afterPaths(std::uint64_t, std::uint64_t, bool batchEnd) override
     {
         if (!batchEnd || complement_ <= 0.0)
             return;

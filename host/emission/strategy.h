@@ -9,7 +9,7 @@
 //     statistics for it and where, and the first-bounce guide shade.cl and connect.cl use;
 //   - bindEmitArgs(): its buffers, as emit_paths' last arguments (lib/emit_kernel.h);
 //   - passLimit() / afterPaths(): a learning strategy runs in passes; after each the renderer hands
-//     control back so that it can read its statistics and change its density;
+//     control back so that it can read its statistics and change its density (and openingsShare());
 //   - imageEstimate(): the image so far, for a strategy that steers by pixel;
 //   - batchWeight(): what the batch just finished weighs in the image, in proportion to its
 //     expected precision (paths over variance per path): a batch drawn while the density was
@@ -84,8 +84,9 @@ struct EmissionKernels {
     const FirstBounceGuide* guide = nullptr;
     // The opening aim it learns (perhaps off: placeholders), or nullptr: nothing is aimed at.
     const OpeningAim* aim = nullptr;
-    // Paths start on the aim's panes too (--adaptive-openings-share > 0): the emission programs are
-    // built with -DFEN_OPENING_WALKS=1 (lib/emit_kernel.h), and without the walk's code otherwise.
+    // Paths may start on the aim's panes too (--adaptive-openings-share > 0 or auto): the emission
+    // programs are built with -DFEN_OPENING_WALKS=1 (lib/emit_kernel.h), and without the walk's code
+    // otherwise. The share itself is openingsShare(), pass by pass.
     bool openingWalks = false;
 };
 
@@ -99,10 +100,22 @@ public:
     // The mean luminous flux a path carries when it starts (lm): what the light --max-bounces
     // removes is reported against it.
     virtual double emittedFluxPerPath() const = 0;
-    // The most paths the renderer may run before calling afterPaths again.
-    virtual std::uint64_t passLimit() const { return std::numeric_limits<std::uint64_t>::max(); }
-    // The path loop has finished `paths` more paths; `batchEnd`: they end a batch.
-    virtual void afterPaths(std::uint64_t paths, bool batchEnd) { (void)paths, (void)batchEnd; }
+    // The most paths the renderer may run before calling afterPaths again; `batchLeft`: the paths
+    // left in the batch, after which afterPaths ends the pass in any case.
+    virtual std::uint64_t passLimit(std::uint64_t batchLeft) const
+    {
+        (void)batchLeft;
+        return std::numeric_limits<std::uint64_t>::max();
+    }
+    // The path loop has finished `paths` more paths, which traced `rays` rays (extension, shadow and
+    // the openings' walks': a cost that depends on the seed alone, not on the machine); `batchEnd`:
+    // they end a batch.
+    virtual void afterPaths(std::uint64_t paths, std::uint64_t rays, bool batchEnd)
+    {
+        (void)paths, (void)rays, (void)batchEnd;
+    }
+    // The share of the next paths that start on the opening aim's panes (RenderParams.openings_share).
+    virtual double openingsShare() const { return 0.0; }
     // The image so far (luminance per pixel, row-major), when kernels().statsPixelScale is set:
     // deterministic for a seed and settings.
     virtual void imageEstimate(const std::vector<double>& luminance) { (void)luminance; }

@@ -173,6 +173,13 @@ void PathLoop::beginBatch()
     ctx_.queue().enqueueFillBuffer(paths_, cl_uchar(0), 0, std::size_t{pool_} * sizeof(dev::PathState));
 }
 
+std::uint64_t PathLoop::deviceRays()
+{
+    std::uint64_t ctr[FEN_CTR_COUNT] = {};
+    ctx_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof ctr, ctr);
+    return ctr[FEN_CTR_SHADOW_RAYS] + ctr[FEN_CTR_OPENING_WALK_RAYS];
+}
+
 std::uint64_t PathLoop::run(std::uint64_t base, std::uint64_t count, BatchCounts& counts,
                              const std::function<void(std::uint64_t, std::uint64_t)>& progress,
                              const std::function<bool()>& abort)

@@ -76,6 +76,12 @@ public:
         params_.pick_offset = offset;
         params_.pick_step = step;
     }
+    // The share of the paths from here on that start on the opening aim's panes (RenderParams
+    // openings_share; the strategy's openingsShare(), pass by pass).
+    void setOpeningsShare(double share) { params_.openings_share = static_cast<float>(share); }
+    // The rays the device has counted since the batch began: shadow rays and the openings' walks'
+    // (the extension rays are counted into BatchCounts by run()). A blocking read.
+    std::uint64_t deviceRays();
     // Zeroes the counters: a batch starts.
     void beginBatch();
     // Runs paths [base, base + count) to the end. `progress(pathsDone, raysDone)` is called after

@@ -153,8 +153,7 @@ struct Renderer::Impl {
         p.sky_phi_nodes = skyTables.phiNodes;
         p.pool_size = pool;
         p.rr_depth = static_cast<std::uint32_t>(*settings.rouletteDepth);  // resolved: always set
-        if (st.emission.method == EmissionMethod::Adaptive)  // lib/opening_walk.h
-            p.openings_share = static_cast<float>(st.emission.adaptive.openingsShare);
+        p.openings_share = 0.0f;  // the strategy's, set before each pass (runBatch)
         p.split_max = static_cast<std::uint32_t>(st.splitMax);
         p.split_weight = static_cast<float>(st.splitWeight * strategy->emittedFluxPerPath());
         if (!(p.split_weight > 0.0f))
@@ -354,25 +353,29 @@ struct Renderer::Impl {
         const auto abort = [this] { return stopping(); };
         std::uint64_t done = 0;
         while (done < count) {
-            const std::uint64_t n = std::min(count - done, std::max<std::uint64_t>(1, strategy->passLimit()));
+            const std::uint64_t n = std::min(count - done, std::max<std::uint64_t>(1, strategy->passLimit(count - done)));
             setPickLattice(base + done, n);
+            loop->setOpeningsShare(strategy->openingsShare());
             const auto [lo, hi] = memberRange(base + done, n);
             sums.before(summedBuffers(steersByPixel));
             const auto t0 = Clock::now();
+            const std::uint64_t raysBefore = counts.extensionRays + loop->deviceRays();
             std::uint64_t ran = loop->run(lo, hi - lo, counts, onIteration, abort);
+            std::uint64_t rays = counts.extensionRays + loop->deviceRays() - raysBefore;
             memberSeconds += since(t0);
             memberPaths += ran;
             bool cut = ran < hi - lo;
             if (team.size() > 1) {
-                // the team's paths of the pass, and whether a stop cut any member's share short
-                std::vector<U128> extra{{ran, 0}, {cut ? 1u : 0u, 0}};
+                // the team's paths and rays of the pass, and whether a stop cut any member's share short
+                std::vector<U128> extra{{ran, 0}, {cut ? 1u : 0u, 0}, {rays, 0}};
                 sums.after(extra);
                 pathsDone += extra[0].lo - ran;  // the progress line counts the team's paths
                 ran = extra[0].lo;
                 cut = extra[1].lo != 0;
+                rays = extra[2].lo;
             }
             done += ran;
-            strategy->afterPaths(ran, done == count || cut);
+            strategy->afterPaths(ran, rays, done == count || cut);
             if (cut)
                 break;
             // A counted batch's end is estimated from the counted batches, batch included, by

@@ -53,9 +53,8 @@ static inline void connect_path(global const RenderParams* params, const Connect
         const float3 steer = value;
         (void)stats_pixel_scale;
 #endif
-        if (part != FEN_PART_NONE) /* a path from a pane teaches no cell */
-            cell_stats_add(cell_stats, part & ~FEN_PART_ESTIMATE_ONLY, steer, params->fixed_scale,
-                           params->stats_scale, counters);
+        cell_stats_add(cell_stats, part & ~FEN_PART_ESTIMATE_ONLY, steer, params->fixed_scale,
+                       params->stats_scale, counters);
 #else
         (void)cell_stats;
         (void)stats_pixel_scale;

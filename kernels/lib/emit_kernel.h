@@ -49,7 +49,9 @@ static inline int start_path(global const RenderParams* params, const FEN_EMITTE
     RngBlock pick;
     if (opening_walk_picked(params, os->aim, path, &pick)) {
         *walks += 1;
-        return opening_walk(params, &emitter->sky, emitter->params->sun_weight.xyz, os, path, pick, p, walk_rays);
+        const uint part = emitter->params->walk_part + (uint)(path & (FEN_WALK_PARTS - 1u));
+        return opening_walk(params, &emitter->sky, emitter->params->sun_weight.xyz, part, os, path, pick, p,
+                            walk_rays);
     }
 #else
     (void)os;

@@ -16,7 +16,8 @@
  *   - the path then goes in from the pane along -wo with weight
  *         L T (1 - F) pi A_total / (A_t w_side) / S,
  *     (the point's density w_side / sum(A w), the cosine's cos / pi), depth 2 and FEN_PATH_BRANCHED:
- *     inside it is a light path that has bounced, with no emission cell (beta.w FEN_PART_NONE).
+ *     inside it is a light path that has bounced, with no emission cell: beta.w is one of the walks'
+ *     own statistics parts (`part`, shared/fen_emission.h FEN_WALK_PARTS), which no cell learns from.
  * The other paths are light paths as ever, their weight over 1 - S. A light path whose first glass
  * is a listed pane side (opening_listed, a side of positive weight) ends there -- shade_path() --
  * unless FEN_PATH_SUN_KEPT: that light is the walks'. The two parts are disjoint and together
@@ -73,13 +74,13 @@ static inline int opening_walk_blocked(const OpeningScene* s, float3 o, float3 d
 
 /* Fills *p with the path of index `path` starting inside at a listed pane side; returns 0 when it
    carries nothing. *rays counts the walk's rays. sun_weight: the sun's irradiance on a surface
-   facing it (AdaptiveParams.sun_weight). */
-static inline int opening_walk(global const RenderParams* params, const Sky* sky, float3 sun_weight,
+   facing it (AdaptiveParams.sun_weight); part: the statistics part its contributions go to. */
+static inline int opening_walk(global const RenderParams* params, const Sky* sky, float3 sun_weight, uint part,
                                const OpeningScene* s, ulong path, RngBlock pick, PathState* p, ulong* rays)
 {
     global const OpeningAim* aim = s->aim;
     path_start(p, path);
-    p->beta = (float4)(0.0f, 0.0f, 0.0f, as_float(FEN_PART_NONE));
+    p->beta = (float4)(0.0f, 0.0f, 0.0f, as_float(part));
     float total = 0.0f;
     for (uint i = 0u; i < aim->triangles; ++i)
         total += aim->tri[i].p0.w * (fmax(aim->tri[i].e1.w, 0.0f) + fmax(aim->tri[i].e2.w, 0.0f));
@@ -161,7 +162,7 @@ static inline int opening_walk(global const RenderParams* params, const Sky* sky
     const float3 beta = L * (FEN_PI * t->p0.w * total / chosen) * trans * (1.0f / params->openings_share);
     p->org = (float4)(offset_ray_origin(w, pane_offset_m, ng, in), 0.0f);
     p->dir = (float4)(in, 0.0f);
-    p->beta = (float4)(beta, as_float(FEN_PART_NONE));
+    p->beta = (float4)(beta, as_float(part));
     p->depth = 2; /* as a light path that bounced once outside */
     p->flags |= FEN_PATH_BRANCHED | (FEN_PATH_OPENING_OTHER << FEN_PATH_OPENING_SHIFT);
     return 1;

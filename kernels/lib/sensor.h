@@ -102,9 +102,8 @@ static inline void sensor_record(const Sensors* s, float3 org, float3 dir, float
                    statistics of the sky the learning is for, not of the unit sky rendered */
                 const float l = flux * cell.inv_area * (1.0f / FEN_PI) * s->steer[c] *
                                 (tagged ? s->steer[cells + patch] : 1.0f);
-                if (as_uint(beta.w) != FEN_PART_NONE) /* a path from a pane teaches no cell */
-                    cell_stats_add(s->cell_stats, as_uint(beta.w) & ~FEN_PART_ESTIMATE_ONLY, (float3)(l),
-                                   s->stats_fixed_scale, s->stats_scale, counters);
+                cell_stats_add(s->cell_stats, as_uint(beta.w) & ~FEN_PART_ESTIMATE_ONLY, (float3)(l),
+                               s->stats_fixed_scale, s->stats_scale, counters);
 #endif
             }
         }

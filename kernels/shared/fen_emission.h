@@ -23,9 +23,12 @@
 /* A path's beta.w part with this bit set only feeds the statistics: connect.cl does not add it to
    the image (the portal strategy's estimate of the light its portals miss). */
 #define FEN_PART_ESTIMATE_ONLY 0x80000000u
-/* The part of a path that started on an opening's pane (lib/opening_walk.h): no emission cell, no
-   statistics; its light goes to the image. */
-#define FEN_PART_NONE 0x7fffffffu
+/* The paths that start on an opening's pane (lib/opening_walk.h) have no emission cell: their
+   contributions go to FEN_WALK_PARTS parts of their own past the cells' (AdaptiveParams.walk_part,
+   spread by the path index's low bits so that no one 128-bit sum takes every walk's atomics), which
+   no cell learns from. The host reads their squares to weigh the walks against the light paths
+   (DESIGN.md §3.6, the share raced). */
+#define FEN_WALK_PARTS 16
 
 /* AdaptiveCell.region: the emission disk, or 1 + g for portal plane g. */
 #define FEN_REGION_DISK 0u
@@ -111,11 +114,12 @@ typedef struct {
     fen_u32 cell_alias_shift; /* the cell alias table has 2^(32 - shift) columns */
     fen_u32 cells;
     fen_u32 portal_base;      /* 1: disk paths whose line crosses a portal are rejected (the portals' own cells emit them) */
-    fen_u32 pad0;
+    fen_u32 walk_part;        /* the first of the openings' walks' FEN_WALK_PARTS statistics parts: FEN_CELL_PARTS x cells */
 } AdaptiveParams;
 FEN_ASSERT_SIZE(AdaptiveParams, 32);
 FEN_ASSERT_OFFSET(AdaptiveParams, cell_alias_shift, 16);
 FEN_ASSERT_OFFSET(AdaptiveParams, portal_base, 24);
+FEN_ASSERT_OFFSET(AdaptiveParams, walk_part, 28);
 
 FEN_NS_END
 

@@ -80,6 +80,7 @@
     X(PortalFrame, triangles) \
     X(AdaptiveParams, cell_alias_shift) \
     X(AdaptiveParams, portal_base) \
+    X(AdaptiveParams, walk_part) \
     X(DevSunCell, normal)    \
     X(DevSunHour, dir)       \
     X(DevSunParams, cos_radius)

@@ -26,6 +26,7 @@ struct Case {
     bool guide = false;
     bool window = false;
     double openingsShare = 0.0;  // the openings' walks (lib/opening_walk.h)
+    bool openingsAuto = false;   // ... their share raced (host/emission/openings_race.h), in small passes
 };
 
 RenderResult renderCase(ocl::Context& ctx, const Case& c, const std::string& checkpoint, const std::string& resume,
@@ -45,6 +46,8 @@ RenderResult renderCase(ocl::Context& ctx, const Case& c, const std::string& che
     s.emission.adaptive.guide.windowMinVisits = 16.0;
     s.emission.adaptive.guide.windowMinSurvival = 0.25;
     s.emission.adaptive.openingsShare = c.openingsShare;
+    s.emission.adaptive.openingsAuto = c.openingsAuto;
+    s.emission.adaptive.openingsRacePaths = std::uint64_t{1} << 16;
     s.paths = 1u << 20;
     s.seed = seed;
     s.rois = {Roi{8, 8, 40, 28}};
@@ -99,8 +102,9 @@ TEST_P(Checkpoint, ResumedRenderIsBitIdentical)
     EXPECT_EQ(rest.counts.windowCulls, whole.counts.windowCulls);
     EXPECT_EQ(rest.counts.openingWalks, whole.counts.openingWalks);
     EXPECT_EQ(rest.counts.openingWalkRays, whole.counts.openingWalkRays);
-    if (c.openingsShare > 0.0) {
+    if (c.openingsShare > 0.0 || c.openingsAuto) {
         EXPECT_GT(whole.counts.openingWalks, 0u);
+        EXPECT_EQ(rest.emission["openings_race"], whole.emission["openings_race"]);
     }
     if (c.window) {
         EXPECT_GT(whole.counts.splitBranches, 0u);
@@ -129,7 +133,9 @@ INSTANTIATE_TEST_SUITE_P(
                            true},
                       // the walks start once the aim lists the window, a pass or two in
                       Case{"adaptive_openings", "courtyard.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform,
-                           true, true, 0.9}),
+                           true, true, 0.9},
+                      Case{"adaptive_openings_auto", "courtyard.gltf", EmissionMethod::Adaptive, EmissionMethod::Uniform,
+                           true, true, 0.0, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 TEST(Checkpoint, AnotherRenderIsRefused)

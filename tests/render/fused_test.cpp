@@ -32,6 +32,7 @@ struct Case {
     bool windowEveryVertex = true;  // with windows: later vertices split too (the default)
     bool aimShareLearned = false;   // the opening aim's first-vertex share learned (else 0.75)
     double openingsShare = 0.0;     // the share of paths that start on the aimed panes (lib/opening_walk.h)
+    bool openingsAuto = false;      // ... raced by the render (host/emission/openings_race.h), in small passes
 };
 
 RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
@@ -60,6 +61,8 @@ RenderResult renderWith(ocl::Context& ctx, const Case& c, KernelMode mode)
     s.emission.adaptive.aim.learnShare = c.aimShareLearned;
     s.emission.adaptive.aim.cosineShare = 0.75;
     s.emission.adaptive.openingsShare = c.openingsShare;
+    s.emission.adaptive.openingsAuto = c.openingsAuto;
+    s.emission.adaptive.openingsRacePaths = std::uint64_t{1} << 16;
     s.rois = {Roi{0, 0, 48, 36}};
     Renderer r(ctx, scene, sky, scene.cameras.at(0), 48, 36, s);
     return r.render();
@@ -88,7 +91,8 @@ TEST_P(FusedKernel, BitIdenticalToTheWavefront)
     EXPECT_EQ(w.counts.windowCulls, f.counts.windowCulls);
     EXPECT_EQ(w.counts.openingWalks, f.counts.openingWalks);
     EXPECT_EQ(w.counts.openingWalkRays, f.counts.openingWalkRays);
-    if (c.openingsShare > 0.0) {
+    if (c.openingsShare > 0.0 || c.openingsAuto) {
+        EXPECT_EQ(w.emission["openings_race"], f.emission["openings_race"]);
         EXPECT_GT(f.counts.openingWalks, 0u) << "no path started on a pane";
         EXPECT_GT(f.counts.openingWalkRays, f.counts.openingWalks) << "the walks traced too few rays";
     } else {
@@ -176,7 +180,10 @@ INSTANTIATE_TEST_SUITE_P(
                            EmissionMethod::Uniform, 3, 1, 1.0, true, false, true, true, true},
                       // the openings' walks: paths from the panes, the light paths ending at them
                       Case{"adaptive_openings_courtyard", "courtyard.gltf", EmissionMethod::Adaptive,
-                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true, true, false, 0.9}),
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true, true, false, 0.9},
+                      // ... their share raced: the same halves, the same decision
+                      Case{"adaptive_openings_auto_courtyard", "courtyard.gltf", EmissionMethod::Adaptive,
+                           EmissionMethod::Uniform, 3, 1, 1.0, true, false, true, true, false, 0.0, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
