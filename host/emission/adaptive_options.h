@@ -48,7 +48,7 @@ struct AdaptiveOptions {
     // The share chosen by the render itself from a baseline and a trial pass (--adaptive-openings-share
     // auto; host/emission/openings_race.h); openingsShare is then unused.
     bool openingsAuto = false;
-    // ... the least pass, in paths, that it races (--adaptive-openings-race-paths).
+    // ... the paths it races, in passes of half as many or more (--adaptive-openings-race-paths).
     std::uint64_t openingsRacePaths = std::uint64_t{1} << 22;
 };
 

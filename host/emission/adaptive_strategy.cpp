@@ -277,6 +277,7 @@ public:
     }
 
     double openingsShare() const override { return race_.share(); }
+    bool learningPending() const override { return race_.pending(); }
 
     void afterPaths(std::uint64_t paths, std::uint64_t rays, bool batchEnd) override
     {

@@ -9,12 +9,17 @@
 
 namespace fen {
 
+RacePass RacePass::minus(const RacePass& o) const
+{
+    return {paths - o.paths, rays - o.rays, lightSumSq - o.lightSumSq, walkSumSq - o.walkSumSq};
+}
+
 const char* OpeningsRace::phaseName(Phase p)
 {
     switch (p) {
     case Phase::Fixed: return "fixed";
     case Phase::Waiting: return "waiting";
-    case Phase::Trial: return "trial";
+    case Phase::Trial: return "racing";
     case Phase::Decided: return "decided";
     }
     return "unknown";
@@ -29,40 +34,46 @@ void OpeningsRace::afterHalf(const RacePass& half)
 {
     if (phase_ != Phase::Trial || halfDone_)
         return;
-    half_ = half;
+    base_ = half;
     halfDone_ = true;
 }
 
 void OpeningsRace::afterPass(const RacePass& pass, bool aimListed, std::uint64_t nextPassPaths)
 {
-    const bool ready = aimListed && nextPassPaths >= minPassPaths_;
     if (phase_ != Phase::Waiting && phase_ != Phase::Trial)
         return;
-    const double paths = pass.paths - half_.paths;
-    if (!halfDone_ || !(half_.paths > 0.0) || !(paths > 0.0)) {
+    listed_ = aimListed;
+    const bool ready = aimListed && nextPassPaths >= racePaths_;
+    const RacePass second = pass.minus(base_);
+    if (!halfDone_ || !(base_.paths > 0.0) || !(second.paths > 0.0)) {
         // a whole pass at share 0: not raced (too small, or the batch ended inside its first half);
         // race the next pass, if it can be
         if (pass.paths > 0.0 && !halfDone_)
             lastM0_ = pass.lightSumSq / pass.paths;
         halfDone_ = false;
+        base_ = {};
         phase_ = ready ? Phase::Trial : Phase::Waiting;
         return;
     }
-    // The baseline's second moment: the first half's, or the pass before's if lower. A second moment
-    // is overestimated now and then by a rare large contribution, never much underestimated once
-    // the grid has learned, and a grid that learns only lowers it: the lower of the two is the
-    // better guess, and it errs towards no walks, today's renderer.
-    m0_ = half_.lightSumSq / half_.paths;
+    halfDone_ = false;
+    trial_ = second;
+    decide();
+}
+
+void OpeningsRace::decide()
+{
+    // The baseline's second moment: the first half's, or the pass before the race's if lower. A
+    // second moment is overestimated now and then by a rare large contribution, never much
+    // underestimated once the grid has learned, and a grid that learns only lowers it: the lower of
+    // the two is the better guess, and it errs towards no walks, today's renderer.
+    m0_ = base_.lightSumSq / base_.paths;
     if (lastM0_ > 0.0)
         m0_ = std::min(m0_, lastM0_);
-    c0_ = half_.rays / half_.paths;
-    a_ = kTrialShare * pass.walkSumSq / paths;  // the walks started in the second half alone
-    b_ = (1.0 - kTrialShare) * (pass.lightSumSq - half_.lightSumSq) / paths;
-    cB_ = (pass.rays - half_.rays) / paths;
-    const RaceChoice c = choose(m0_, c0_, a_, b_, cB_, kTrialShare);
+    const double a = kTrialShare * trial_.walkSumSq / trial_.paths;
+    const double b = (1.0 - kTrialShare) * trial_.lightSumSq / trial_.paths;
+    const RaceChoice c = choose(m0_, base_.rays / base_.paths, a, b, trial_.rays / trial_.paths, kTrialShare);
     gain_ = c.gain;
     share_ = c.gain >= kMargin ? c.share : 0.0;
-    halfDone_ = false;
     phase_ = Phase::Decided;
 }
 
@@ -86,7 +97,8 @@ RaceChoice OpeningsRace::choose(double m0, double c0, double a, double b, double
 void OpeningsRace::save(StateWriter& w) const
 {
     w.u64("adaptive.race_phase", static_cast<std::uint64_t>(phase_));
-    w.f64s("adaptive.race", {share_, m0_, c0_, a_, b_, cB_, gain_, lastM0_});
+    w.f64s("adaptive.race", {share_, lastM0_, m0_, gain_, base_.paths, base_.rays, base_.lightSumSq, base_.walkSumSq,
+                             trial_.paths, trial_.rays, trial_.lightSumSq, trial_.walkSumSq});
 }
 
 void OpeningsRace::load(StateReader& r)
@@ -95,12 +107,15 @@ void OpeningsRace::load(StateReader& r)
     if (p == static_cast<std::uint64_t>(Phase::Fixed))
         r.fail("adaptive.race_phase", "a fixed share, in a render that races it");
     phase_ = static_cast<Phase>(p);
-    const std::vector<double> v = r.f64s("adaptive.race", 8, true);
+    const std::vector<double> v = r.f64s("adaptive.race", 12, true);
     for (double x : v)
-        r.finite("adaptive.race", x);
-    if (!(v[0] >= 0.0 && v[0] <= kMaxShare))
+        if (!(r.finite("adaptive.race", x) >= 0.0))
+            r.fail("adaptive.race", "a negative value");
+    if (v[0] > kMaxShare)
         r.fail("adaptive.race", "a share outside [0, 0.95]");
-    share_ = v[0], m0_ = v[1], c0_ = v[2], a_ = v[3], b_ = v[4], cB_ = v[5], gain_ = v[6], lastM0_ = v[7];
+    share_ = v[0], lastM0_ = v[1], m0_ = v[2], gain_ = v[3];
+    base_ = {v[4], v[5], v[6], v[7]};
+    trial_ = {v[8], v[9], v[10], v[11]};
     halfDone_ = false;
 }
 
@@ -109,12 +124,20 @@ nlohmann::json OpeningsRace::report() const
     nlohmann::json j = {{"phase", phaseName(phase_)}, {"share", share()}};
     if (phase_ == Phase::Fixed)
         return j;
+    const auto perPath = [](double v, double n) { return n > 0.0 ? v / n : 0.0; };
+    j["race_paths"] = racePaths_;
     j["trial_share"] = kTrialShare;
     j["margin"] = kMargin;
     j["shares"] = {kMinShare, kMaxShare};
-    j["min_pass_paths"] = minPassPaths_;
-    j["baseline"] = {{"second_moment_per_path", m0_}, {"rays_per_path", c0_}};
-    j["trial"] = {{"walks_second_moment", a_}, {"light_paths_second_moment", b_}, {"rays_per_path", cB_}};
+    j["baseline"] = {{"paths", base_.paths},
+                     {"second_moment_per_path", perPath(base_.lightSumSq, base_.paths)},
+                     {"pass_before_second_moment_per_path", lastM0_},
+                     {"rays_per_path", perPath(base_.rays, base_.paths)}};
+    j["trial"] = {{"paths", trial_.paths},
+                  {"walks_second_moment", kTrialShare * perPath(trial_.walkSumSq, trial_.paths)},
+                  {"light_paths_second_moment", (1.0 - kTrialShare) * perPath(trial_.lightSumSq, trial_.paths)},
+                  {"rays_per_path", perPath(trial_.rays, trial_.paths)}};
+    j["second_moment_used"] = m0_;
     j["predicted_gain"] = gain_;
     return j;
 }

@@ -116,6 +116,9 @@ public:
     }
     // The share of the next paths that start on the opening aim's panes (RenderParams.openings_share).
     virtual double openingsShare() const { return 0.0; }
+    // Whether it would rather learn from more passes before the counted batches (a render by time
+    // then calibrates on, within its tenth of the budget): the openings' share still to be raced.
+    virtual bool learningPending() const { return false; }
     // The image so far (luminance per pixel, row-major), when kernels().statsPixelScale is set:
     // deterministic for a seed and settings.
     virtual void imageEstimate(const std::vector<double>& luminance) { (void)luminance; }

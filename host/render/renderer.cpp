@@ -615,7 +615,9 @@ struct Renderer::Impl {
         } else {
             // Calibration, not counted: batches doubling from four pool-fulls until one lasts
             // min(1 s, 2 % of the budget), long enough to measure the path rate with the
-            // per-batch overheads in it.
+            // per-batch overheads in it, and the strategy has learned what it wants to before the
+            // counted batches (the openings' race: host/emission/openings_race.h); at most a tenth
+            // of the budget.
             budgetSeconds = settings.timeSeconds;
             BatchCounts scratch;
             std::uint64_t cal = std::uint64_t{pool} * 4;
@@ -633,7 +635,8 @@ struct Renderer::Impl {
                     cal = std::max<std::uint64_t>(ran, 1);
                     break;
                 }
-                if (fromRoot(team, last >= enough || since(c0) >= 0.1 * settings.timeSeconds) || stopAgreed())
+                const bool measured = last >= enough && !strategy->learningPending();
+                if (fromRoot(team, measured || since(c0) >= 0.1 * settings.timeSeconds) || stopAgreed())
                     break;
                 cal *= 2;
             }

@@ -607,7 +607,13 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     expectError(run("render " + good + out + " --adaptive-openings-share 1"), 1,
                 "--adaptive-openings-share 1: must be in [0, 1) (the light paths keep the light the walks cannot take)");
     expectError(run("render " + good + out + " --adaptive-openings-share -0.1"), 1, "--adaptive-openings-share -0.1: must be in [0, 1)");
-    expectError(run("render " + good + out + " --adaptive-openings-share half"), 2, "--adaptive-openings-share = half");
+    expectError(run("render " + good + out + " --adaptive-openings-share half"), 1,
+                "--adaptive-openings-share 'half': expected auto or a number in [0, 1)");
+    // ... or auto, raced in passes of 2^16 paths or more
+    expectError(run("render " + good + out + " --adaptive-openings-race-paths 4194304"), 1,
+                "--adaptive-openings-race-paths: applies with --adaptive-openings-share auto");
+    expectError(run("render " + good + out + " --adaptive-openings-share auto --adaptive-openings-race-paths 1000"), 1,
+                "--adaptive-openings-race-paths 1000: must be in 65536..2^40 paths");
     expectError(run("render " + good + out + " --adaptive-aim off --adaptive-openings-share 0.9"), 1,
                 "--adaptive-openings-share: applies with the opening aim, which --adaptive-aim off turns off");
     expectError(run("render " + good + out + " --method uniform --adaptive-openings-share 0.9"), 1,

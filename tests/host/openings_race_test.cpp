@@ -73,7 +73,8 @@ TEST(OpeningsRace, WaitsForTheAimAndALargePassThenRacesTwoHalves)
     const nlohmann::json j = r.report();
     EXPECT_EQ(j["phase"], "decided");
     EXPECT_NEAR(j["predicted_gain"].get<double>(), 3.8, 1e-9);
-    EXPECT_NEAR(j["baseline"]["second_moment_per_path"].get<double>(), 4.0, 1e-12);
+    EXPECT_NEAR(j["baseline"]["second_moment_per_path"].get<double>(), 5.0, 1e-12);
+    EXPECT_NEAR(j["second_moment_used"].get<double>(), 4.0, 1e-12);
     // decided: later passes change nothing
     r.afterPass({1000, 1e9, 1e9, 1e9}, true, 2 * kMin);
     EXPECT_NEAR(r.share(), 0.95, 1e-12);
@@ -130,7 +131,7 @@ TEST(OpeningsRace, ACheckpointCarriesTheRace)
     // a share out of range is refused, naming the key
     StateWriter bad;
     bad.u64("adaptive.race_phase", 3);
-    bad.f64s("adaptive.race", {1.5, 0, 0, 0, 0, 0, 0, 0});
+    bad.f64s("adaptive.race", {1.5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
     StateReader rb(bad.bytes(), "test");
     try {
         back.load(rb);
