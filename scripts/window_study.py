@@ -4,8 +4,10 @@
 For each scene and seed, the variants run one after another (interleaved, so that a busy machine
 slows them alike), adaptive emission, the same seed, the same time; efficiency of a variant =
 (noise_b^2 * seconds_b) / (noise^2 * seconds), b the --baseline variant (off); noise = the JSON's
-noise_std_err_cd_m2 (the per-pixel standard error over the ROI). Prints one line per render and
-the median efficiency per scene and variant; every line also goes to --data.
+noise_std_err_cd_m2 (the per-pixel standard error over the ROI); seconds = the render's, or with
+--charge-calibration its calibration's too (a variant that calibrates longer, as
+--adaptive-openings-share auto does for its race, pays for it). Prints one line per render and the
+median efficiency per scene and variant; every line also goes to --data.
 
     python3 scripts/window_study.py --scenes house,house_snow,courtyard --seeds 1,2,3 \\
         --variants off,mean,mean_cull50,mean_cull05 --width 160 --time 20 --out out/window \\
@@ -55,6 +57,8 @@ def main():
     ap.add_argument("--variant-kernels", nargs=2, action="append", default=[], metavar=("NAME", "DIR"),
                     help="run variant NAME with FEN_KERNEL_DIR=DIR (edited kernels)")
     ap.add_argument("--baseline", default="off", help="the variant the others' efficiency is over (default off)")
+    ap.add_argument("--charge-calibration", action="store_true",
+                    help="count each render's calibration seconds with its render seconds")
     ap.add_argument("--common", default="", help="options for every run, split at spaces (e.g. '--roi X0,Y0,X1,Y1')")
     a = ap.parse_args()
     for name, options in a.variant:
@@ -101,11 +105,13 @@ def main():
                 subprocess.run(cmd + a.common.split() + VARIANTS[v], check=True, stdout=subprocess.DEVNULL, env=env)
                 j = json.load(open(stem + ".json"))
                 c = j["counters"]
-                runs[v] = (j["noise_std_err_cd_m2"], j["seconds"]["render"])
+                seconds = j["seconds"]["render"] + (j["seconds"]["calibration"] if a.charge_calibration else 0.0)
+                runs[v] = (j["noise_std_err_cd_m2"], seconds)
                 line = (f"{scene} seed {seed} {v:7s} noise {j['noise_std_err_cd_m2']:8.3f} "
                         f"mean {j['mean_luminance_cd_m2']:9.3f} +- {j['mean_std_err_cd_m2']:.3f} "
                         f"top1 {j['noise_top1_share']:.2f} paths {j['paths'] / 1e6:7.1f}M "
-                        f"render {j['seconds']['render']:5.1f}s split {c['split_branches'] / 1e6:6.1f}M "
+                        f"render {j['seconds']['render']:5.1f}s calibration {j['seconds']['calibration']:4.1f}s "
+                        f"split {c['split_branches'] / 1e6:6.1f}M "
                         f"culls {c['window_culls'] / 1e6:6.1f}M "
                         f"window_slots {j['emission'].get('guide', {}).get('window_slots', 0)}")
                 if a.baseline in runs and v != a.baseline:
