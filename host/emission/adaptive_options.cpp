@@ -108,9 +108,9 @@ public:
         render.add_option("--adaptive-aim-power", aimPower_,
                           "With adaptive --adaptive-aim on: weigh each opening by its learned worth to this power, (0, 2] (default 1)");
         render.add_option("--adaptive-openings-share", openingsShare_,
-                          "With adaptive --adaptive-aim on: the share of paths that start on the aimed panes and take the light reflected outside by walking outwards, [0, 1), or auto: chosen by the render from a baseline and a trial pass (default 0: none; 0.9 for a room lit by a sunlit facing wall)");
+                          "With adaptive --adaptive-aim on: the share of paths that start on the aimed panes and take the light reflected outside by walking outwards, [0, 1), or auto: chosen by the render from one pass raced in halves, at share 0 and 0.5 (default 0: none; 0.9 for a room lit by a sunlit facing wall)");
         render.add_option("--adaptive-openings-race-paths", openingsRacePaths_,
-                          "With adaptive --adaptive-openings-share auto: the paths the race runs, in passes of half as many or more, each half at share 0 and half at the trial's, 2^16..2^40 (default 4194304)");
+                          "With adaptive --adaptive-openings-share auto: the least pass, in paths, that the race runs in two halves (share 0, then 0.5), 2^16..2^40 (default 4194304)");
         render.add_option("--adaptive-guide-memory", guideMemory_,
                           "With adaptive --adaptive-guide on: MiB of device memory for the guide's trees (default 256)");
         render.add_option("--adaptive-target", target_,

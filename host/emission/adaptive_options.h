@@ -45,10 +45,10 @@ struct AdaptiveOptions {
     // The share of path indices that start on the aim's panes and walk outwards (DESIGN.md §3.6,
     // kernels/lib/opening_walk.h); 0: none. Needs the aim.
     double openingsShare = 0.0;
-    // The share chosen by the render itself from a baseline and a trial pass (--adaptive-openings-share
+    // The share chosen by the render itself from one pass raced in halves (--adaptive-openings-share
     // auto; host/emission/openings_race.h); openingsShare is then unused.
     bool openingsAuto = false;
-    // ... the paths it races, in passes of half as many or more (--adaptive-openings-race-paths).
+    // ... the least pass, in paths, that it races (--adaptive-openings-race-paths).
     std::uint64_t openingsRacePaths = std::uint64_t{1} << 22;
 };
 

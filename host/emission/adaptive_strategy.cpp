@@ -286,8 +286,12 @@ public:
         passPaths_ += paths;
         passRays_ += rays;
         if (passPaths_ < passSize_ && !batchEnd) {
-            if (race_.racing() && !race_.halfDone() && raceHalf_ > 0 && passPaths_ >= raceHalf_)
-                race_.afterHalf(passMoments());
+            if (race_.racing() && !race_.halfDone() && raceHalf_ > 0 && passPaths_ >= raceHalf_) {
+                firstHalf_.resize(statsParts() * FEN_CELL_STATS_WORDS);
+                ctx_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, firstHalf_.size() * 8, firstHalf_.data());
+                firstHalfPaths_ = passPaths_;
+                race_.afterHalf(passMoments(firstHalf_));
+            }
             return;
         }
         const auto t0 = std::chrono::steady_clock::now();
@@ -554,12 +558,6 @@ private:
 
     // What the race measures of the pass so far: paths, rays, and the squares of the contributions
     // as the image got them (not over the base), the light paths' and the walks'.
-    RacePass passMoments()
-    {
-        std::vector<std::uint64_t> raw(statsParts() * FEN_CELL_STATS_WORDS);
-        ctx_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
-        return passMoments(raw);
-    }
     RacePass passMoments(const std::vector<std::uint64_t>& raw) const
     {
         const std::size_t n = FEN_CELL_PARTS * grid_->cells().size();
@@ -570,17 +568,23 @@ private:
         return race;
     }
 
-    // Learns from the pass just ended; returns what the race measures of it.
+    // Learns from the pass just ended; returns what the race measures of it. A raced pass's grid
+    // learns from its first half alone: in the second, at the trial's share, the light that crossed
+    // a listed pane was the walks' and is missing from the cells, which would teach the grid of a
+    // render that may go on without walks that those cells bring less than they do.
     RacePass learn()
     {
         const std::size_t n = FEN_CELL_PARTS * grid_->cells().size();
         std::vector<std::uint64_t> raw(statsParts() * FEN_CELL_STATS_WORDS);
         auto& q = ctx_.queue();
         q.enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
+        const bool raced = !firstHalf_.empty() && passPaths_ > firstHalfPaths_;
+        const std::vector<std::uint64_t>& learned = raced ? firstHalf_ : raw;
+        const double learnedPaths = static_cast<double>(raced ? firstHalfPaths_ : passPaths_);
         std::vector<GridCell::Stats> parts(n);
         const auto& cells = grid_->cells();
         for (std::size_t i = 0; i < n; ++i) {
-            const std::uint64_t* w = raw.data() + FEN_CELL_STATS_WORDS * i;
+            const std::uint64_t* w = learned.data() + FEN_CELL_STATS_WORDS * i;
             // Lambda = Y P(cell) / P_base(cell): the contribution had the base density emitted it.
             const std::size_t cell = i / FEN_CELL_PARTS;
             const double toBase = realised_[cell] / cells[cell].base;
@@ -588,11 +592,12 @@ private:
             parts[i].sumSq = fixed128(w + FEN_CELL_SUMSQ_LO) / statsScale_ * toBase * toBase;
             // Paths are not counted on the device: the expectation, exact in the mean
             // (shared/fen_emission.h).
-            parts[i].paths = static_cast<double>(passPaths_) * realised_[cell] / FEN_CELL_PARTS;
+            parts[i].paths = learnedPaths * realised_[cell] / FEN_CELL_PARTS;
             parts[i].connections = static_cast<double>(w[FEN_CELL_CONNECTIONS]);
         }
         grid_->addPass(parts);
         const RacePass race = passMoments(raw);
+        firstHalf_.clear();
         const double variance = nextVariance_;
         batchPasses_.push_back({static_cast<double>(passPaths_), variance});
         double passConn = 0.0;
@@ -639,6 +644,8 @@ private:
     std::uint64_t passSize_ = 0, passPaths_ = 0, passRays_ = 0;
     OpeningsRace race_{opt_.openingsAuto, opt_.openingsShare, opt_.openingsRacePaths};  // the walks' share, pass by pass
     mutable std::uint64_t raceHalf_ = 0;  // the raced pass's first half: set when it starts (passLimit)
+    std::vector<std::uint64_t> firstHalf_;  // ... its statistics when it ended (what the grid learns)
+    std::uint64_t firstHalfPaths_ = 0;
     int passes_ = 0;
     double learnSeconds_ = 0.0;
     double nextVariance_ = 1.0;       // variance per path of the pass about to run over the base's, predicted

@@ -19,7 +19,7 @@ const char* OpeningsRace::phaseName(Phase p)
     switch (p) {
     case Phase::Fixed: return "fixed";
     case Phase::Waiting: return "waiting";
-    case Phase::Trial: return "racing";
+    case Phase::Trial: return "ready";  // the next pass large enough is raced
     case Phase::Decided: return "decided";
     }
     return "unknown";

@@ -26,8 +26,8 @@
 // fairly (their second moment falls a hundredfold while it learns; the walks' does not: raced at
 // passes of 2^21 the houses chose walks that cost them). Measured on the shipped scenes in
 // docs/results/guiding.md, "The openings' share raced". In a render by time the renderer's
-// calibration goes on until that pass has run, within its tenth of the budget (pending()), so that
-// the race costs the counted batches nothing.
+// calibration goes on until that pass has run, while it is under a tenth of the budget (pending()),
+// so that the race costs the counted batches nothing.
 // The decision is a function of fixed-point sums and ray counts, so the same seed chooses the same
 // share at any pool size, in either kernel form, and in a team (whose sums are the team's).
 // Invariants: share() is in [0, 1); before the decision it is 0 or the trial's share; a checkpoint
