@@ -616,8 +616,8 @@ struct Renderer::Impl {
             // Calibration, not counted: batches doubling from four pool-fulls until one lasts
             // min(1 s, 2 % of the budget), long enough to measure the path rate with the
             // per-batch overheads in it, and the strategy has learned what it wants to before the
-            // counted batches (the openings' race: host/emission/openings_race.h); at most a tenth
-            // of the budget.
+            // counted batches (the openings' race: host/emission/openings_race.h), while the
+            // calibration is under a tenth of the budget (checked after each batch).
             budgetSeconds = settings.timeSeconds;
             BatchCounts scratch;
             std::uint64_t cal = std::uint64_t{pool} * 4;
