@@ -347,9 +347,9 @@ nlohmann::json adaptiveFingerprint(const EmissionSettings& e)
     if (a.openingsAuto) {  // absent at 0: a checkpoint written before the option still resumes
         j["openings_share"] = "auto";
         j["openings_race_paths"] = a.openingsRacePaths;
-    }
-    else if (a.openingsShare > 0.0)
+    } else if (a.openingsShare > 0.0) {
         j["openings_share"] = a.openingsShare;
+    }
     return j;
 }
 

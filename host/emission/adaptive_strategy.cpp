@@ -12,10 +12,10 @@
 
 #include "bvh_build.h"
 #include "cl/launch.h"
-#include "emission/openings_race.h"
 #include "emission/adaptive_grid.h"
 #include "emission/adaptive_options.h"
 #include "emission/emission_sphere.h"
+#include "emission/openings_race.h"
 #include "emission/light_levels.h"
 #include "emission/portal_planes.h"
 #include "trace/device_bvh.h"
@@ -287,8 +287,7 @@ public:
         passRays_ += rays;
         if (passPaths_ < passSize_ && !batchEnd) {
             if (race_.racing() && !race_.halfDone() && raceHalf_ > 0 && passPaths_ >= raceHalf_) {
-                firstHalf_.resize(statsParts() * FEN_CELL_STATS_WORDS);
-                ctx_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, firstHalf_.size() * 8, firstHalf_.data());
+                firstHalf_ = readStats();
                 firstHalfPaths_ = passPaths_;
                 race_.afterHalf(passMoments(firstHalf_));
             }
@@ -551,10 +550,15 @@ private:
         q.enqueueWriteBuffer(params_, CL_TRUE, 0, sizeof deviceParams_, &deviceParams_);
     }
 
-    // Reads the pass's statistics into the grid, learns, uploads the new grid, clears the counts.
-    // Records the pass's variance relative to the base density's, as predicted before it ran.
     // The statistics parts in use: the cells', then the walks'.
     std::size_t statsParts() const { return FEN_CELL_PARTS * grid_->cells().size() + FEN_WALK_PARTS; }
+    // Their words as the device holds them now (a blocking read).
+    std::vector<std::uint64_t> readStats() const
+    {
+        std::vector<std::uint64_t> raw(statsParts() * FEN_CELL_STATS_WORDS);
+        ctx_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
+        return raw;
+    }
 
     // What the race measures of the pass so far: paths, rays, and the squares of the contributions
     // as the image got them (not over the base), the light paths' and the walks'.
@@ -568,16 +572,17 @@ private:
         return race;
     }
 
-    // Learns from the pass just ended; returns what the race measures of it. A raced pass's grid
-    // learns from its first half alone: in the second, at the trial's share, the light that crossed
-    // a listed pane was the walks' and is missing from the cells, which would teach the grid of a
-    // render that may go on without walks that those cells bring less than they do.
+    // Reads the pass's statistics into the grid, learns, uploads the new grid, clears the counts.
+    // Records the pass's variance relative to the base density's, as predicted before it ran, and
+    // returns what the race measures of the pass. A raced pass's grid learns from its first half
+    // alone: in the second, at the trial's share, the light that crossed a listed pane was the
+    // walks' and is missing from the cells, which would teach the grid of a render that may go on
+    // without walks that those cells bring less than they do.
     RacePass learn()
     {
         const std::size_t n = FEN_CELL_PARTS * grid_->cells().size();
-        std::vector<std::uint64_t> raw(statsParts() * FEN_CELL_STATS_WORDS);
+        const std::vector<std::uint64_t> raw = readStats();
         auto& q = ctx_.queue();
-        q.enqueueReadBuffer(stats_, CL_TRUE, 0, raw.size() * 8, raw.data());
         const bool raced = !firstHalf_.empty() && passPaths_ > firstHalfPaths_;
         const std::vector<std::uint64_t>& learned = raced ? firstHalf_ : raw;
         const double learnedPaths = static_cast<double>(raced ? firstHalfPaths_ : passPaths_);

@@ -19,7 +19,7 @@ const char* OpeningsRace::phaseName(Phase p)
     switch (p) {
     case Phase::Fixed: return "fixed";
     case Phase::Waiting: return "waiting";
-    case Phase::Trial: return "ready";  // the next pass large enough is raced
+    case Phase::Ready: return "ready";  // the next pass large enough is raced
     case Phase::Decided: return "decided";
     }
     return "unknown";
@@ -27,12 +27,12 @@ const char* OpeningsRace::phaseName(Phase p)
 
 double OpeningsRace::share() const
 {
-    return phase_ == Phase::Trial ? (halfDone_ ? kTrialShare : 0.0) : share_;
+    return phase_ == Phase::Ready ? (halfDone_ ? kTrialShare : 0.0) : share_;
 }
 
 void OpeningsRace::afterHalf(const RacePass& half)
 {
-    if (phase_ != Phase::Trial || halfDone_)
+    if (phase_ != Phase::Ready || halfDone_)
         return;
     base_ = half;
     halfDone_ = true;
@@ -40,7 +40,7 @@ void OpeningsRace::afterHalf(const RacePass& half)
 
 void OpeningsRace::afterPass(const RacePass& pass, bool aimListed, std::uint64_t nextPassPaths)
 {
-    if (phase_ != Phase::Waiting && phase_ != Phase::Trial)
+    if (phase_ != Phase::Waiting && phase_ != Phase::Ready)
         return;
     listed_ = aimListed;
     const bool ready = aimListed && nextPassPaths >= racePaths_;
@@ -52,7 +52,7 @@ void OpeningsRace::afterPass(const RacePass& pass, bool aimListed, std::uint64_t
             lastM0_ = pass.lightSumSq / pass.paths;
         halfDone_ = false;
         base_ = {};
-        phase_ = ready ? Phase::Trial : Phase::Waiting;
+        phase_ = ready ? Phase::Ready : Phase::Waiting;
         return;
     }
     halfDone_ = false;

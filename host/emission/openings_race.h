@@ -76,11 +76,11 @@ public:
     double share() const;
     // Whether the pass under way is raced (its first half at share 0, the rest at the trial's
     // share: the strategy ends a piece there), and whether that half is done.
-    bool racing() const { return phase_ == Phase::Trial; }
+    bool racing() const { return phase_ == Phase::Ready; }
     bool halfDone() const { return halfDone_; }
     // Whether the race is still to run and the aim lists panes: passes before the counted batches
     // are worth running for it.
-    bool pending() const { return phase_ == Phase::Trial || (phase_ == Phase::Waiting && listed_); }
+    bool pending() const { return phase_ == Phase::Ready || (phase_ == Phase::Waiting && listed_); }
     // The first half of a pass that will run `passPaths` paths, or 0 when it is too small to race
     // (then it runs at share 0, and the next pass is raced if it can be).
     std::uint64_t half(std::uint64_t passPaths) const { return passPaths >= racePaths_ ? passPaths / 2 : 0; }
@@ -98,7 +98,7 @@ public:
     nlohmann::json report() const;
 
 private:
-    enum class Phase { Fixed, Waiting, Trial, Decided };
+    enum class Phase { Fixed, Waiting, Ready, Decided };
     static const char* phaseName(Phase p);
     void decide();
     double share_;
