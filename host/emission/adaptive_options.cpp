@@ -108,7 +108,7 @@ public:
         render.add_option("--adaptive-aim-power", aimPower_,
                           "With adaptive --adaptive-aim on: weigh each opening by its learned worth to this power, (0, 2] (default 1)");
         render.add_option("--adaptive-openings-share", openingsShare_,
-                          "With adaptive --adaptive-aim on: the share of paths that start on the aimed panes and take the light reflected outside by walking outwards, [0, 1), or auto: chosen by the render from one pass raced in halves, at share 0 and 0.5 (default 0: none; 0.9 for a room lit by a sunlit facing wall)");
+                          "With adaptive --adaptive-aim on: the share of paths that start on the aimed panes and take the light reflected outside by walking outwards, [0, 1), or auto: chosen by the render from one pass raced in halves, at share 0 and 0.5 (default auto; 0: none)");
         render.add_option("--adaptive-openings-race-paths", openingsRacePaths_,
                           "With adaptive --adaptive-openings-share auto: the least pass, in paths, that the race runs in two halves (share 0, then 0.5), 2^16..2^40 (default 4194304)");
         render.add_option("--adaptive-guide-memory", guideMemory_,
@@ -201,6 +201,7 @@ public:
         if (const char* o = firstGiven({{aimShare_.has_value(), "--adaptive-aim-share"},
                                         {aimPower_.has_value(), "--adaptive-aim-power"},
                                         {openingsShare_.has_value(), "--adaptive-openings-share"},
+                                        {openingsRacePaths_.has_value(), "--adaptive-openings-race-paths"},
                                         {aimShareMin_.has_value(), "--adaptive-aim-share-min"},
                                         {aimShareMax_.has_value(), "--adaptive-aim-share-max"}});
             o && !a.aim.enabled)
@@ -239,7 +240,7 @@ public:
             throw Error("--adaptive-openings-race-paths: applies with --adaptive-openings-share auto");
         a.openingsRacePaths = openingsRacePaths_.value_or(a.openingsRacePaths);
         if (!a.aim.enabled)
-            a.openingsAuto = false;  // a default of auto: no aim, no panes to start on
+            a.openingsAuto = false;  // the default, auto: no aim, no panes to start on
         validateAdaptiveOptions(a);
     }
 

@@ -46,8 +46,8 @@ struct AdaptiveOptions {
     // kernels/lib/opening_walk.h); 0: none. Needs the aim.
     double openingsShare = 0.0;
     // The share chosen by the render itself from one pass raced in halves (--adaptive-openings-share
-    // auto; host/emission/openings_race.h); openingsShare is then unused.
-    bool openingsAuto = false;
+    // auto, the default; host/emission/openings_race.h); openingsShare is then unused.
+    bool openingsAuto = true;
     // ... the least pass, in paths, that it races (--adaptive-openings-race-paths).
     std::uint64_t openingsRacePaths = std::uint64_t{1} << 22;
 };

@@ -474,7 +474,9 @@ TEST(CliCompare, ChartsAndTableFromEqualTimeRenders)
 
 // The openings' walks (--adaptive-openings-share, DESIGN.md §3.6) with a work plane: the floor's
 // mean illuminance within 4 sigma of adaptive without them (the walks' paths teach no emission
-// cell and the sensors take their flux as any light path's), and the JSON counts the walks.
+// cell and the sensors take their flux as any light path's), and the JSON counts the walks. The
+// default, auto, at 2e6 paths has no pass of 2^22 to race (its batches cut every pass shorter): it
+// renders without walks, and says so: ready, the aim listing panes, but not raced.
 TEST(CliRender, OpeningWalksKeepTheWorkPlanesIlluminance)
 {
     const std::string dir = test::tempDir("cli-render-opening-walks");
@@ -495,7 +497,10 @@ TEST(CliRender, OpeningWalksKeepTheWorkPlanesIlluminance)
                                                                       << " +- " << sb;
     EXPECT_GT(mb, 0.0);
     EXPECT_EQ(a["counters"]["opening_walks"].get<double>(), 0.0);
+    EXPECT_EQ(a["emission"]["openings_share_auto"], true);
+    EXPECT_EQ(a["emission"]["openings_race"]["phase"], "ready");
     EXPECT_GT(b["counters"]["opening_walks"].get<double>(), 1e6);
+    EXPECT_EQ(b["emission"]["openings_share_auto"], false);
     EXPECT_DOUBLE_EQ(b["emission"]["openings_share"].get<double>(), 0.9);
     // with sensors alone the aim learns nothing to start the walks from: said, not silently ignored
     expectError(run("render " + std::string(FEN_SCENES_DIR) + "/courtyard.gltf --work-plane floor --no-image "
@@ -609,9 +614,11 @@ TEST(CliRender, AdaptiveBadOptionsAreOneLine)
     expectError(run("render " + good + out + " --adaptive-openings-share -0.1"), 1, "--adaptive-openings-share -0.1: must be in [0, 1)");
     expectError(run("render " + good + out + " --adaptive-openings-share half"), 1,
                 "--adaptive-openings-share 'half': expected auto or a number in [0, 1)");
-    // ... or auto, raced in passes of 2^16 paths or more
-    expectError(run("render " + good + out + " --adaptive-openings-race-paths 4194304"), 1,
+    // ... or auto (the default), raced in passes of 2^16 paths or more
+    expectError(run("render " + good + out + " --adaptive-openings-share 0.5 --adaptive-openings-race-paths 4194304"), 1,
                 "--adaptive-openings-race-paths: applies with --adaptive-openings-share auto");
+    expectError(run("render " + good + out + " --adaptive-aim off --adaptive-openings-race-paths 4194304"), 1,
+                "--adaptive-openings-race-paths: applies with the opening aim, which --adaptive-aim off turns off");
     expectError(run("render " + good + out + " --adaptive-openings-share auto --adaptive-openings-race-paths 1000"), 1,
                 "--adaptive-openings-race-paths 1000: must be in 65536..2^40 paths");
     expectError(run("render " + good + out + " --adaptive-aim off --adaptive-openings-share 0.9"), 1,
