@@ -225,9 +225,10 @@ public:
     {
         return M_PI * radius_m_ * radius_m_ * (sunY_ + (goniogram_ ? goniogram_->integral() : 0.0));
     }
-    double batchWeight() override
+    double batchWeight(double pathsShare) override
     {
-        const double w = opt_.weighBatches ? lastBatchWeight_ : 1.0;
+        // the predicted precision N^2 / sum n_p V_p grows with the batch's paths N by itself
+        const double w = opt_.weighBatches ? lastBatchWeight_ : pathsShare;
         batchWeights_.push_back(w);
         return w;
     }

@@ -122,9 +122,10 @@ public:
     // The image so far (luminance per pixel, row-major), when kernels().statsPixelScale is set:
     // deterministic for a seed and settings.
     virtual void imageEstimate(const std::vector<double>& luminance) { (void)luminance; }
-    // The weight of the batch that afterPaths(.., true) just ended, relative to the others; 1 for
-    // a strategy whose density never changes (all batches alike).
-    virtual double batchWeight() { return 1.0; }
+    // The weight of the batch that afterPaths(.., true) just ended, relative to the others, given
+    // its paths over a full batch's (`pathsShare`, below 1 for a render by time's last batch,
+    // render/last_batch.h): that share for a strategy whose density never changes.
+    virtual double batchWeight(double pathsShare) { return pathsShare; }
     // The JSON output's "emission" object (README "Render output").
     virtual nlohmann::json report() const = 0;
     // Warnings for the user once the render is done (each one line, without "warning: ").

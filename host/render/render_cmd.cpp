@@ -506,6 +506,7 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
                        {"resumed_batches", r.resumedBatches}};
     j["batches"] = r.batches;
     j["paths_per_batch"] = r.pathsPerBatch;
+    j["last_batch_paths"] = r.lastBatchPaths;
     j["camera_samples_per_pixel"] = r.cameraSamplesPerPixel;
     j["camera_pass"] = r.cameraPass;
     if (!r.team.is_null())

@@ -16,6 +16,7 @@
 #include "render/checkpoint.h"
 #include "render/device_scene.h"
 #include "render/film.h"
+#include "render/last_batch.h"
 #include "sensor/device_sensors.h"
 #include "sensor/sensor_smoothing.h"
 #include "shared/fen_rng.h"
@@ -326,6 +327,23 @@ struct Renderer::Impl {
         loop->setPickLattice(offset, static_cast<std::uint32_t>(std::clamp(std::round(step), 1.0, 4294967295.0)));
     }
 
+    // The paths of the batches counted: whole ones, and a render by time's last (0: none).
+    static std::uint64_t countedPaths(const LoopState& l, std::uint64_t last)
+    {
+        const int whole = l.done - (last > 0 ? 1 : 0);
+        return l.perBatch * static_cast<std::uint64_t>(whole) + last;
+    }
+
+    // The camera pass's device seconds so far (the kernels' named timers).
+    double cameraDeviceSeconds() const
+    {
+        double s = 0.0;
+        for (const auto& [name, e] : ctx.stats().entries())
+            if (name == "camera_pass")
+                s += e.deviceSeconds;
+        return s;
+    }
+
     struct BatchImage {
         std::vector<double> rgb;  // per pixel
         std::vector<float> camera;  // the camera pass's output (film.h cameraImage)
@@ -405,9 +423,11 @@ struct Renderer::Impl {
 
     // A batch counted: into the film's and sensors' statistics, and what the camera pass learns
     // from it sets its samples for the next (`before`: the counts before the batch).
-    void countBatch(const BatchImage& img, const BatchCounts& before, const BatchCounts& after, BatchStatistics& stats)
+    // `pathsShare`: the batch's paths over a full batch's (below 1 for a render by time's last batch).
+    void countBatch(const BatchImage& img, const BatchCounts& before, const BatchCounts& after, BatchStatistics& stats,
+                    double pathsShare)
     {
-        const double w = strategy->batchWeight();
+        const double w = strategy->batchWeight(pathsShare);
         if (sensorStats)
             sensorStats->add(img.sensorLux, w);
         if (dcStats)
@@ -680,6 +700,9 @@ struct Renderer::Impl {
         };
         bool partial = false;  // the one batch counted was cut short by a stop
         bool dropped = false;  // a batch cut short by a stop was dropped: the strategy moved on
+        std::uint64_t last = 0;  // a render by time's last batch, fitted to the time left (last_batch.h)
+        const int doneBefore = l.done;
+        const double cameraBefore = cameraDeviceSeconds();
         for (;;) {
             if (settings.paths > 0 && l.done >= batches)
                 break;
@@ -690,14 +713,23 @@ struct Renderer::Impl {
             if (settings.paths == 0 && l.done >= 2) {
                 const double elapsed = r.calibrationSeconds + renderSeconds();
                 const double perBatchSeconds = renderSeconds() / l.done;
-                if (fromRoot(team, elapsed + perBatchSeconds > settings.timeSeconds))  // the root's clock
-                    break;
+                if (fromRoot(team, elapsed + perBatchSeconds > settings.timeSeconds)) {  // the root's clock
+                    // A checkpoint's loop state has equal batches: a render that keeps one ends here.
+                    const double camera = l.done > doneBefore ? (cameraDeviceSeconds() - cameraBefore) / (l.done - doneBefore) : 0.0;
+                    last = checkpointing ? 0
+                                         : LastBatch::paths(l.perBatch, perBatchSeconds, camera,
+                                                            settings.timeSeconds - elapsed);
+                    last = static_cast<std::uint64_t>(fromRoot(team, static_cast<double>(last)));
+                    if (last == 0)
+                        break;
+                }
             }
             if (checkpointing)
                 counted = strategyState();
             const BatchCounts countsBefore = r.counts;
-            const BatchImage img = runBatch(l.base, l.perBatch, static_cast<std::uint32_t>(l.done), r.counts, &stats);
-            if (img.paths < l.perBatch) {
+            const std::uint64_t count = last > 0 ? last : l.perBatch;
+            const BatchImage img = runBatch(l.base, count, static_cast<std::uint32_t>(l.done), r.counts, &stats);
+            if (img.paths < count) {
                 // Stopped inside the batch. With batches done, the image is theirs and this one is
                 // dropped (its counts too; a checkpoint gets the strategy as they left it); with
                 // none, the paths it traced are the image: one smaller batch, and no checkpoint.
@@ -705,23 +737,26 @@ struct Renderer::Impl {
                 if (l.done >= 1) {
                     r.counts = countsBefore;
                     dropped = true;
+                    last = 0;  // not counted
                     break;
                 }
-                countBatch(img, countsBefore, r.counts, stats);
+                countBatch(img, countsBefore, r.counts, stats, 1.0);  // the only batch: its weight is moot
                 l.base += img.paths;
                 l.perBatch = img.paths;
                 ++l.done;
                 partial = true;
                 break;
             }
-            countBatch(img, countsBefore, r.counts, stats);
+            countBatch(img, countsBefore, r.counts, stats,
+                       last > 0 ? static_cast<double>(last) / static_cast<double>(l.perBatch) : 1.0);
             estimateImage(&stats, 0);
             rebalance();
-            l.base += l.perBatch;
+            l.base += count;
             ++l.done;
             if (settings.onBatch)
-                settings.onBatch({l.done, l.perBatch * static_cast<std::uint64_t>(l.done),
-                                  r.calibrationSeconds + renderSeconds(), &stats});
+                settings.onBatch({l.done, countedPaths(l, last), r.calibrationSeconds + renderSeconds(), &stats});
+            if (last > 0)
+                break;  // the time is up
             const bool due = settings.checkpointBatches > 0
                                  ? (l.done - savedAt) >= settings.checkpointBatches
                                  : since(lastCheckpoint) >= settings.checkpointSeconds;
@@ -739,7 +774,8 @@ struct Renderer::Impl {
 
         r.batches = l.done;
         r.pathsPerBatch = l.perBatch;
-        r.paths = l.perBatch * static_cast<std::uint64_t>(l.done);
+        r.lastBatchPaths = last > 0 ? last : l.perBatch;
+        r.paths = countedPaths(l, last);
         r.image = stats.mean();
         r.stdErrLuminance = stats.stdErrLuminance();
         r.roiBatchMeans = stats.roiBatchMeans();

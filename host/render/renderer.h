@@ -118,6 +118,7 @@ struct RenderResult {
     Image image;                         // mean of the batches: radiance, cd/m^2 (RGB)
     std::vector<double> stdErrLuminance; // per pixel: standard error of the luminance (cd/m^2)
     std::uint64_t paths = 0, pathsPerBatch = 0;
+    std::uint64_t lastBatchPaths = 0;  // pathsPerBatch, or fewer: a render by time's last batch (last_batch.h)
     int batches = 0;
     BatchCounts counts;                  // rays and counters of the counted batches
     bool interrupted = false;         // stopped by settings.stop before its paths or time were done

@@ -227,6 +227,7 @@ TEST(CliRender, AnInterruptedRenderWritesWhatItHas)
     EXPECT_GE(batches, 1);
     EXPECT_LT(batches, 1024);
     EXPECT_EQ(j["paths"].get<std::uint64_t>(), j["paths_per_batch"].get<std::uint64_t>() * batches);
+    EXPECT_EQ(j["last_batch_paths"], j["paths_per_batch"]);  // by paths: no last batch fitted to a clock
     EXPECT_GT(j["mean_luminance_cd_m2"].get<double>(), 0.0);
     EXPECT_EQ(j["counters"]["bad_contributions"], 0);
 }
@@ -294,14 +295,18 @@ TEST(CliRender, RouletteStartsAtTheMethodsDefaultUnlessGiven)
 TEST(CliRender, TimeBudgetAndPortalsFromTheCommandLine)
 {
     const std::string dir = test::tempDir("cli-render-time");
-    // --time: a calibration, then at least two equal batches within about the budget
+    // --time: a calibration, then at least two equal batches within about the budget, and perhaps a
+    // last one fitted to the time left (render/last_batch.h): a quarter of a batch or more
     const CliRun t = run("render " + std::string(FEN_SCENES_DIR) + "/room.gltf --out " + dir +
                          "/t.exr --time 3 --width 64 --no-progress");
     ASSERT_EQ(t.status, 0) << t.err;
     const auto jt = nlohmann::json::parse(slurp(dir + "/t.json"));
     EXPECT_GE(jt["batches"].get<int>(), 2);
     EXPECT_LT(jt["seconds"]["render"].get<double>() + jt["seconds"]["calibration"].get<double>(), 4.5);
-    EXPECT_EQ(jt["paths"].get<std::uint64_t>(), jt["paths_per_batch"].get<std::uint64_t>() * jt["batches"].get<std::uint64_t>());
+    const std::uint64_t perBatch = jt["paths_per_batch"], last = jt["last_batch_paths"];
+    EXPECT_EQ(jt["paths"].get<std::uint64_t>(), perBatch * (jt["batches"].get<std::uint64_t>() - 1) + last);
+    EXPECT_LE(last, perBatch);
+    EXPECT_GE(4 * last, perBatch);
     // portals: the scene's marking (window + door frame) and an override
     const CliRun p = run("render " + std::string(FEN_SCENES_DIR) + "/inner_room.gltf --out " + dir +
                          "/p.exr --method portal --paths 100000 --width 64 --no-progress");

@@ -102,8 +102,9 @@ TEST(OpeningWalks, AutoTakesThemWhereTheyPayAndKeepsTheMean)
     const nlohmann::json& roomRace = room.emission["openings_race"];
     EXPECT_EQ(roomRace["phase"], "decided");
     EXPECT_GT(room.counts.openingWalks, 0u);  // the trial's half pass at least
-    if (roomRace["share"].get<double>() == 0.0)
+    if (roomRace["share"].get<double>() == 0.0) {
         EXPECT_LT(room.counts.openingWalks, paths / 10) << "walks after a decision against them";
+    }
     expectSameMean(renderScene(*ctx, "room.gltf", 0.0, paths, 2), room, "room, raced");
 }
 
