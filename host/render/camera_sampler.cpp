@@ -129,7 +129,8 @@ void CameraSampler::addPilot(const std::vector<float>& camera, std::uint64_t cam
     std::fill(counts_.begin(), counts_.end(), floor_);  // until the light tracer's variance is known
 }
 
-void CameraSampler::afterBatch(const std::vector<double>& lightLuminance, double weight, std::uint64_t lightRays)
+void CameraSampler::afterBatch(const std::vector<double>& lightLuminance, double weight, std::uint64_t lightRays,
+                               double pathsShare)
 {
     samplesTotal_ += samplesPerBatch();
     if (mode_ == CameraPassMode::Fixed)
@@ -147,7 +148,10 @@ void CameraSampler::afterBatch(const std::vector<double>& lightLuminance, double
     }
     lastLight_ = lightLuminance;
     lastWeight_ = weight;
-    allocate(weight, lightRays);
+    // the pair above with the batch's own weight; the plan for a full batch's (weights and rays
+    // grow with the paths)
+    const double share = pathsShare > 0.0 && pathsShare < 1.0 ? pathsShare : 1.0;
+    allocate(weight / share, static_cast<std::uint64_t>(static_cast<double>(lightRays) / share));
 }
 
 void CameraSampler::allocate(double weight, std::uint64_t lightRays)

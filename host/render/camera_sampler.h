@@ -65,9 +65,12 @@ public:
     void addPilot(const std::vector<float>& camera, std::uint64_t cameraRays, std::size_t width);
 
     // After a counted batch of weight `weight` (film.h): `lightLuminance` the light-traced part of
-    // its image (cd/m^2 per pixel), `lightRays` its extension and shadow rays. Counts the batch's
-    // samples and sets the next batch's counts (fixed mode: only counts; the rest is not read).
-    void afterBatch(const std::vector<double>& lightLuminance, double weight, std::uint64_t lightRays);
+    // its image (cd/m^2 per pixel), `lightRays` its extension and shadow rays, `pathsShare` its
+    // paths over a full batch's (below 1 for a render by time's last batch, render/last_batch.h).
+    // Counts the batch's samples and sets the next batch's counts, planned for a full batch (fixed
+    // mode: only counts; the rest is not read).
+    void afterBatch(const std::vector<double>& lightLuminance, double weight, std::uint64_t lightRays,
+                    double pathsShare = 1.0);
 
     // What it did, for the JSON: samples in all, the most a pixel gets in the next batch, pixels
     // above the floor, and the camera pass's predicted share of the next batch's image variance (0 when not

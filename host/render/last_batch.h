@@ -10,7 +10,7 @@
 // both. The batch weighs in the image in proportion to its paths (EmissionStrategy::batchWeight),
 // so the mean stays a precision-weighted mean of independent batches and the standard errors hold.
 // Invariants: the result is 0 (no last batch) or in [kMinShare, 1) of a full batch's paths (for a
-// batch of 4 paths or more); a render by paths never has one (it runs its B batches).
+// batch of 2 paths or more); a render by paths never has one (it runs its B batches).
 #pragma once
 
 #include <algorithm>
@@ -36,9 +36,10 @@ struct LastBatch {
         const double share = kMargin * (secondsLeft - (batchSeconds - light)) / light;
         if (!(share >= kMinShare))
             return 0;
-        const double n = std::floor(share * static_cast<double>(perBatch));
+        const double p = static_cast<double>(perBatch);
+        const double n = std::max(std::floor(share * p), std::ceil(kMinShare * p));
         // called when a whole batch does not fit, so the share is below 1 but for the clock's jitter
-        return std::min(static_cast<std::uint64_t>(std::max(n, 1.0)), perBatch - 1);
+        return std::min(static_cast<std::uint64_t>(n), perBatch - 1);
     }
 };
 

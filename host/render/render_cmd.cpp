@@ -339,8 +339,6 @@ int runRender(const RenderOptions& opt, const RenderHooks& hooks)
     if (openingWalks && noImage)
         throw Error("--adaptive-openings-share: needs an image (the walks start on the panes the opening aim learns "
                     "from what reaches the camera), and --no-image renders none");
-    if (settings.skyPatchMF > 0 || noImage)
-        settings.emission.adaptive.openingsAuto = false;  // auto: the walks cannot pay there, so none
     if (annualSkyVectors && opt.annual.settings.learnForYear)
         settings.skyPatchWeights = annualPatchWeights(*annualSkyVectors, opt.annual.settings.mf);
     for (const auto& reg : regions)

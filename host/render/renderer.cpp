@@ -40,6 +40,11 @@ RenderSettings withMethodDefaults(RenderSettings s)
 {
     if (!s.rouletteDepth)
         s.rouletteDepth = defaultRouletteDepth(s.emission.method);
+    // The openings' share raced (the default) is off, quietly, where no walk could pay: with no
+    // image (the aim, which learns from the camera, lists no pane) and in an annual study (a walk's
+    // light has no sky patch; DESIGN.md §3.6). A fixed share there is the command line's error.
+    if (s.noImage || s.skyPatchMF > 0)
+        s.emission.adaptive.openingsAuto = false;
     return s;
 }
 
@@ -107,7 +112,7 @@ struct Renderer::Impl {
           sensors(st.sensors && !st.sensors->empty()
                       ? DeviceSensors(c, *st.sensors, static_cast<float>(film.fixedScale() / M_PI), st.skyPatchMF)
                       : DeviceSensors(c)),
-          strategy(makeEmissionStrategy(st.emission, {c, s, skyTables, g, sky, scene.bvh().width(), film.fixedScale(), film.width(), film.height()})),
+          strategy(makeEmissionStrategy(settings.emission, {c, s, skyTables, g, sky, scene.bvh().width(), film.fixedScale(), film.width(), film.height()})),
           pool(st.poolSize > 0 ? st.poolSize : defaultPoolSlots(c.info())),
           cameraSampler(film.pixels(), static_cast<std::uint32_t>(st.cameraSpp),
                         st.noImage ? CameraPassMode::Fixed : st.cameraPass)
@@ -448,7 +453,8 @@ struct Renderer::Impl {
         std::vector<double> light(film.pixels());
         for (std::size_t p = 0; p < light.size(); ++p)
             light[p] = luminance(img.rgb[3 * p], img.rgb[3 * p + 1], img.rgb[3 * p + 2]);
-        cameraSampler.afterBatch(light, w, (after.extensionRays + after.shadowRays) - (before.extensionRays + before.shadowRays));
+        cameraSampler.afterBatch(light, w, (after.extensionRays + after.shadowRays) - (before.extensionRays + before.shadowRays),
+                                 pathsShare);
         film.setCameraSamples(cameraSampler.counts());
     }
 
@@ -703,6 +709,12 @@ struct Renderer::Impl {
         std::uint64_t last = 0;  // a render by time's last batch, fitted to the time left (last_batch.h)
         const int doneBefore = l.done;
         const double cameraBefore = cameraDeviceSeconds();
+        double batchSeconds = 0.0;  // the last whole batch's, this process's
+        // Not where a checkpoint is kept (its loop state has equal batches), nor with the fixed
+        // camera pass, which folds a whole batch's camera samples into a batch the weights take as
+        // a smaller one (the noise estimate would then be low).
+        const bool fitLast = settings.paths == 0 && !checkpointing &&
+                             (settings.noImage || cameraSampler.mode() != CameraPassMode::Fixed);
         for (;;) {
             if (settings.paths > 0 && l.done >= batches)
                 break;
@@ -714,11 +726,13 @@ struct Renderer::Impl {
                 const double elapsed = r.calibrationSeconds + renderSeconds();
                 const double perBatchSeconds = renderSeconds() / l.done;
                 if (fromRoot(team, elapsed + perBatchSeconds > settings.timeSeconds)) {  // the root's clock
-                    // A checkpoint's loop state has equal batches: a render that keeps one ends here.
-                    const double camera = l.done > doneBefore ? (cameraDeviceSeconds() - cameraBefore) / (l.done - doneBefore) : 0.0;
-                    last = checkpointing ? 0
-                                         : LastBatch::paths(l.perBatch, perBatchSeconds, camera,
-                                                            settings.timeSeconds - elapsed);
+                    // Sized by the slower of the mean batch and the last (the rate drifts), with the
+                    // camera pass's time a batch as measured here: none before this process's first.
+                    const int here = l.done - doneBefore;
+                    if (fitLast && here > 0)
+                        last = LastBatch::paths(l.perBatch, std::max(perBatchSeconds, batchSeconds),
+                                                (cameraDeviceSeconds() - cameraBefore) / here,
+                                                settings.timeSeconds - elapsed);
                     last = static_cast<std::uint64_t>(fromRoot(team, static_cast<double>(last)));
                     if (last == 0)
                         break;
@@ -728,6 +742,7 @@ struct Renderer::Impl {
                 counted = strategyState();
             const BatchCounts countsBefore = r.counts;
             const std::uint64_t count = last > 0 ? last : l.perBatch;
+            const auto batchStart = Clock::now();
             const BatchImage img = runBatch(l.base, count, static_cast<std::uint32_t>(l.done), r.counts, &stats);
             if (img.paths < count) {
                 // Stopped inside the batch. With batches done, the image is theirs and this one is
@@ -751,6 +766,7 @@ struct Renderer::Impl {
                        last > 0 ? static_cast<double>(last) / static_cast<double>(l.perBatch) : 1.0);
             estimateImage(&stats, 0);
             rebalance();
+            batchSeconds = since(batchStart);
             l.base += count;
             ++l.done;
             if (settings.onBatch)

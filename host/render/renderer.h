@@ -9,11 +9,13 @@
 // reads its statistics and may change its density -- the hook after every pass, which a learning
 // strategy uses. The camera pass adds the sky seen directly once per batch. With a time budget, a
 // short calibration (not counted in the image, but a learning strategy learns from it) sizes the
-// batches so that about B of them fill the time. In a team (settings.team) every member runs this
-// same loop on its share of each pass's paths; the device sums are added over the members after
-// every pass (team/shared_sums.h), the root alone runs the camera pass and hands out its image, and
-// every decision that depends on a clock or a signal is the root's or everyone's, so all members
-// take the same steps and hold the same state (DESIGN.md §9).
+// batches so that about B of them fill the time, and one smaller last batch takes the time the
+// last whole one leaves (render/last_batch.h), weighed by its share of a batch's paths. In a team
+// (settings.team) every member runs this same loop on its share of each pass's paths; the device
+// sums are added over the members after every pass (team/shared_sums.h), the root alone runs the
+// camera pass and hands out its image, and every decision that depends on a clock or a signal is
+// the root's or everyone's, so all members take the same steps and hold the same state
+// (DESIGN.md §9).
 #pragma once
 
 #include <atomic>
@@ -143,7 +145,8 @@ struct RenderResult {
     // so their (weighted) spread gives the ROI mean's standard error (pixels within a batch are
     // not).
     std::vector<std::vector<double>> roiBatchMeans;
-    std::vector<double> batchWeights;  // film.h BatchStatistics: 1 each unless the strategy learns
+    // film.h BatchStatistics: 1 each unless the strategy learns (a last batch by time: its share)
+    std::vector<double> batchWeights;
     // Per ROI, the camera pass's part apart from the batches' (film.h): its mean and that mean's
     // variance. roiBatchMeans are of the light-traced part.
     std::vector<std::pair<double, double>> roiCamera;

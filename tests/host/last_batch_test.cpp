@@ -34,6 +34,8 @@ TEST(LastBatch, NoneWhenTooLittleIsLeft)
     EXPECT_EQ(LastBatch::paths(0, 2.0, 0.0, 1.0), 0u);
     EXPECT_EQ(LastBatch::paths(1000, 0.0, 0.0, 1.0), 0u);
     EXPECT_EQ(LastBatch::paths(1, 2.0, 0.0, 1.5), 0u);      // a batch of one path has no smaller one
+    // just over a quarter of 1001 paths rounds down to 250, under the quarter: 251, the least that is not
+    EXPECT_EQ(LastBatch::paths(1001, 2.0, 0.0, 0.5264), 251u);
 }
 
 // Fifteen batches of N paths and a last one of N/4, each batch's value the mean of its paths'
