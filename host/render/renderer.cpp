@@ -375,6 +375,7 @@ struct Renderer::Impl {
         };
         const auto abort = [this] { return stopping(); };
         std::uint64_t done = 0;
+        std::uint64_t deviceSoFar = 0;  // the device's shadow and walk rays in the batch (beginBatch zeroed them)
         while (done < count) {
             const std::uint64_t n = std::min(count - done, std::max<std::uint64_t>(1, strategy->passLimit(count - done)));
             setPickLattice(base + done, n);
@@ -382,9 +383,11 @@ struct Renderer::Impl {
             const auto [lo, hi] = memberRange(base + done, n);
             sums.before(summedBuffers(steersByPixel));
             const auto t0 = Clock::now();
-            const std::uint64_t raysBefore = counts.extensionRays + loop->deviceRays();
+            const std::uint64_t passExtension = counts.extensionRays;
             std::uint64_t ran = loop->run(lo, hi - lo, counts, onIteration, abort);
-            std::uint64_t rays = counts.extensionRays + loop->deviceRays() - raysBefore;
+            const std::uint64_t deviceNow = loop->deviceRays();
+            std::uint64_t rays = counts.extensionRays - passExtension + deviceNow - deviceSoFar;
+            deviceSoFar = deviceNow;
             memberSeconds += since(t0);
             memberPaths += ran;
             bool cut = ran < hi - lo;
@@ -811,12 +814,10 @@ struct Renderer::Impl {
             r.team["kind"] = team.describe();
             r.team["shares"] = shares;
         }
-        double deviceSeconds = 0.0, cameraSeconds = 0.0;
-        for (const auto& [name, e] : r.kernels) {
+        double deviceSeconds = 0.0;
+        for (const auto& [name, e] : r.kernels)
             deviceSeconds += e.deviceSeconds;
-            if (name == "camera_pass")
-                cameraSeconds += e.deviceSeconds;
-        }
+        const double cameraSeconds = cameraDeviceSeconds();
         r.cameraSamplesPerPixel = static_cast<double>(cameraSampler.samplesTotal()) /
                                   static_cast<double>(std::max<std::size_t>(film.pixels(), 1));
         r.cameraPass = {{"mode", cameraPassModeName(cameraSampler.mode())},
